@@ -1,0 +1,161 @@
+#include "dynmesh/mesh/check.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_set>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/predicates.hpp"
+
+namespace dynmesh {
+
+std::string MeshCheckReport::summary(const std::string& prefix) const {
+    std::string s;
+    for (const auto& p : problems) s += prefix + p + "\n";
+    if (n_problems > problems.size())
+        s += prefix + "... and " + std::to_string(n_problems - problems.size()) + " more\n";
+    return s;
+}
+
+MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
+    MeshCheckReport r;
+    auto problem = [&](std::string msg) {
+        ++r.n_problems;
+        if (r.problems.size() < opt.max_listed) r.problems.push_back(std::move(msg));
+    };
+    r.vertices = m.n_vertices();
+    r.edges = m.n_edges();
+    r.faces = m.n_faces();
+    const std::string V = "vertex ", H = "halfedge ", F = "face ";
+
+    // Halfedge structure.
+    bool structure_ok = true;
+    for (Edge e : m.edges()) {
+        for (int i = 0; i < 2; ++i) {
+            const Halfedge h = SurfaceMesh::halfedge(e, i);
+            const std::string hs = H + std::to_string(h.idx());
+            const Halfedge n = m.next(h), p = m.prev(h);
+            if (!n.is_valid() || !p.is_valid() || n.idx() >= m.halfedges_size() ||
+                p.idx() >= m.halfedges_size() || m.is_deleted(n) || m.is_deleted(p)) {
+                problem(hs + ": next/prev missing or deleted");
+                structure_ok = false;
+                continue;
+            }
+            if (m.prev(n) != h) { problem(hs + ": prev(next(h)) != h"); structure_ok = false; }
+            if (m.to_vertex(h) != m.from_vertex(n)) {
+                problem(hs + ": next(h) does not start where h ends");
+                structure_ok = false;
+            }
+            const Vertex t = m.to_vertex(h);
+            if (!t.is_valid() || t.idx() >= m.vertices_size() || m.is_deleted(t)) {
+                problem(hs + ": points to a missing or deleted vertex");
+                structure_ok = false;
+            }
+            if (m.face(h) != m.face(n)) { problem(hs + ": next(h) lies in another face"); structure_ok = false; }
+            if (m.is_boundary(h)) ++r.boundary_edges;  // counts boundary halfedges = edges
+            if (m.to_vertex(h) == m.from_vertex(h)) { problem(hs + ": a loop edge"); structure_ok = false; }
+        }
+    }
+    for (Face f : m.faces()) {
+        const Halfedge h = m.halfedge(f);
+        if (!h.is_valid() || m.is_deleted(h) || m.face(h) != f) {
+            problem(F + std::to_string(f.idx()) + ": its halfedge does not belong to it");
+            structure_ok = false;
+            continue;
+        }
+        if (m.next(m.next(m.next(h))) != h) {
+            problem(F + std::to_string(f.idx()) + ": not a triangle");
+            structure_ok = false;
+        }
+    }
+    if (!structure_ok) {
+        r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
+                  static_cast<long long>(r.faces);
+        return r;
+    }
+
+    // Vertices: manifold fans, outgoing boundary convention.
+    std::vector<std::uint32_t> out_count(m.vertices_size(), 0);
+    for (Edge e : m.edges())
+        for (int i = 0; i < 2; ++i) ++out_count[m.from_vertex(SurfaceMesh::halfedge(e, i)).idx()];
+    for (Vertex v : m.vertices()) {
+        const std::string vs = V + std::to_string(v.idx());
+        if (m.is_isolated(v)) {
+            ++r.isolated_vertices;
+            problem(vs + ": isolated (no triangle uses it)");
+            continue;
+        }
+        const Halfedge h0 = m.halfedge(v);
+        if (m.is_deleted(h0) || m.from_vertex(h0) != v) {
+            problem(vs + ": its halfedge does not start at it");
+            continue;
+        }
+        std::size_t n = 0, nb = 0;
+        Halfedge h = h0;
+        do {
+            ++n;
+            if (m.is_boundary(h)) ++nb;
+            h = m.ccw_rotated(h);
+        } while (h != h0 && n <= out_count[v.idx()]);
+        if (n != out_count[v.idx()] || nb > 1) {
+            ++r.non_manifold_vertices;
+            problem(vs + ": non-manifold (its triangles do not form a single fan)");
+        } else if (nb == 1 && !m.is_boundary(h0)) {
+            problem(vs + ": on the boundary but its halfedge is not the boundary one");
+        }
+        // duplicate edges: two outgoing halfedges to the same vertex
+        std::vector<std::uint32_t> nbrs;
+        for (Halfedge g : m.outgoing_halfedges(v)) nbrs.push_back(m.to_vertex(g).idx());
+        std::sort(nbrs.begin(), nbrs.end());
+        for (std::size_t i = 1; i < nbrs.size(); ++i)
+            if (nbrs[i] == nbrs[i - 1] && v.idx() < nbrs[i]) {
+                ++r.duplicate_edges;
+                problem("edge (" + std::to_string(v.idx()) + ", " + std::to_string(nbrs[i]) +
+                        ") appears more than once");
+            }
+    }
+    if (r.boundary_edges > 0 && opt.require_closed)
+        problem(std::to_string(r.boundary_edges) + " boundary edges: the surface is not closed");
+
+    if (opt.check_degenerate)
+        for (Face f : m.faces()) {
+            const auto vs = m.face_vertices(f);
+            if (vs[0] == vs[1] || vs[1] == vs[2] || vs[0] == vs[2] ||
+                collinear(m.position(vs[0]), m.position(vs[1]), m.position(vs[2]))) {
+                ++r.degenerate_faces;
+                problem(F + std::to_string(f.idx()) + ": degenerate (zero area)");
+            }
+        }
+
+    // Components over faces and edges (union-find on vertices).
+    std::vector<std::uint32_t> parent(m.vertices_size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (Edge e : m.edges()) {
+        const auto a = find(m.vertex(e, 0).idx()), b = find(m.vertex(e, 1).idx());
+        if (a != b) parent[a] = b;
+    }
+    for (Vertex v : m.vertices())
+        if (!m.is_isolated(v) && find(v.idx()) == v.idx()) ++r.components;
+    if (opt.require_connected && r.components > 1)
+        problem(std::to_string(r.components) + " connected components, expected one");
+
+    r.closed = r.boundary_edges == 0;
+    r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
+              static_cast<long long>(r.faces);
+    return r;
+}
+
+void require_valid_mesh(const SurfaceMesh& mesh, const std::string& what,
+                        const MeshCheckOptions& options) {
+    const MeshCheckReport r = check_mesh(mesh, options);
+    if (r.ok()) return;
+    std::string first = r.problems.empty() ? std::string("invalid") : r.problems.front();
+    throw TopologyError(what + ": " + first +
+                        (r.n_problems > 1 ? " (and " + std::to_string(r.n_problems - 1) + " more problems)" : ""));
+}
+
+}  // namespace dynmesh

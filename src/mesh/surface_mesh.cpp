@@ -1,0 +1,632 @@
+#include "dynmesh/mesh/surface_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+
+namespace dynmesh {
+
+namespace {
+constexpr std::uint32_t kInvalid = Handle<VertexTag>::kInvalid;
+
+std::string vstr(std::uint32_t i) { return "vertex " + std::to_string(i); }
+
+struct PairHash {
+    std::size_t operator()(std::uint64_t k) const noexcept {
+        k ^= k >> 33;
+        k *= 0xff51afd7ed558ccdULL;
+        k ^= k >> 33;
+        return static_cast<std::size_t>(k);
+    }
+};
+inline std::uint64_t key(std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+}  // namespace
+
+// ---- construction ----------------------------------------------------------------------------
+
+Vertex SurfaceMesh::add_vertex(const Point3& p) {
+    positions_.push_back(p);
+    vhalfedge_.push_back(kInvalid);
+    vdeleted_.push_back(false);
+    vprops_.push_back();
+    return Vertex(static_cast<std::uint32_t>(positions_.size() - 1));
+}
+
+Halfedge SurfaceMesh::new_edge(Vertex from, Vertex to) {
+    const auto h = static_cast<std::uint32_t>(hto_.size());
+    hto_.push_back(to.idx());
+    hto_.push_back(from.idx());
+    for (int i = 0; i < 2; ++i) {
+        hnext_.push_back(kInvalid);
+        hprev_.push_back(kInvalid);
+        hface_.push_back(kInvalid);
+    }
+    edeleted_.push_back(false);
+    eprops_.push_back();
+    return Halfedge(h);
+}
+
+Face SurfaceMesh::new_face() {
+    fhalfedge_.push_back(kInvalid);
+    fdeleted_.push_back(false);
+    fprops_.push_back();
+    return Face(static_cast<std::uint32_t>(fhalfedge_.size() - 1));
+}
+
+void SurfaceMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
+    positions_.reserve(nv);
+    vhalfedge_.reserve(nv);
+    vdeleted_.reserve(nv);
+    vprops_.reserve(nv);
+    for (auto* v : {&hto_, &hnext_, &hprev_, &hface_}) v->reserve(2 * ne);
+    edeleted_.reserve(ne);
+    eprops_.reserve(ne);
+    fhalfedge_.reserve(nf);
+    fdeleted_.reserve(nf);
+    fprops_.reserve(nf);
+}
+
+SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
+    SurfaceMesh m;
+    const std::size_t nv = soup.points.size();
+    if (nv >= kInvalid || soup.triangles.size() >= kInvalid / 4)
+        throw InvalidInput("from_soup: too many elements for 32-bit indices");
+    m.reserve(nv, soup.triangles.size() * 3 / 2 + 16, soup.triangles.size());
+    for (std::size_t i = 0; i < nv; ++i) {
+        if (!is_finite(soup.points[i]))
+            throw InvalidInput("from_soup: " + vstr(static_cast<std::uint32_t>(i)) +
+                               " has a non-finite coordinate (NaN or infinity)");
+        m.add_vertex(soup.points[i]);
+    }
+    std::unordered_map<std::uint64_t, std::uint32_t, PairHash> directed;  // (a,b) -> halfedge a->b
+    directed.reserve(soup.triangles.size() * 3);
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
+        const std::string where = "from_soup: triangle " + std::to_string(t);
+        for (std::uint32_t i : tri)
+            if (i >= nv)
+                throw InvalidInput(where + " uses vertex index " + std::to_string(i) +
+                                   " but there are only " + std::to_string(nv) + " vertices");
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+            throw InvalidInput(where + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+                               std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+        const Face f = m.new_face();
+        std::array<Halfedge, 3> hs;
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
+            if (directed.count(key(a, b)))
+                throw TopologyError(where + ": edge (" + std::to_string(a) + ", " +
+                                    std::to_string(b) +
+                                    ") is used twice in the same direction (inconsistent "
+                                    "orientation, or an edge shared by more than two triangles)");
+            auto it = directed.find(key(b, a));
+            Halfedge h;
+            if (it != directed.end()) {
+                h = twin(Halfedge(it->second));
+                if (m.hface_[h.idx()] != kInvalid)
+                    throw TopologyError(where + ": edge (" + std::to_string(a) + ", " +
+                                        std::to_string(b) + ") has more than two triangles");
+            } else {
+                h = m.new_edge(Vertex(a), Vertex(b));
+            }
+            directed.emplace(key(a, b), h.idx());
+            hs[i] = h;
+        }
+        for (int i = 0; i < 3; ++i) {
+            m.set_face(hs[i], f);
+            m.set_next(hs[i], hs[(i + 1) % 3]);
+            m.set_halfedge(m.from_vertex(hs[i]), hs[i]);
+        }
+        m.set_halfedge(f, hs[0]);
+    }
+    // Link boundary halfedges into loops; a vertex with two outgoing boundary halfedges is
+    // pinched (non-manifold).
+    std::vector<std::uint32_t> boundary_out(nv, kInvalid);
+    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) {
+        if (m.hface_[h] != kInvalid) continue;
+        const std::uint32_t from = m.hto_[h ^ 1u];
+        if (boundary_out[from] != kInvalid)
+            throw TopologyError("from_soup: " + vstr(from) +
+                                " is non-manifold: it has two separate boundary fans");
+        boundary_out[from] = h;
+    }
+    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) {
+        if (m.hface_[h] != kInvalid) continue;
+        m.set_next(Halfedge(h), Halfedge(boundary_out[m.hto_[h]]));
+        m.set_halfedge(Vertex(m.hto_[h ^ 1u]), Halfedge(h));
+    }
+    // Every outgoing halfedge of a manifold vertex lies in one fan around it.
+    std::vector<std::uint32_t> out_count(nv, 0), fan_count(nv, 0);
+    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) ++out_count[m.hto_[h ^ 1u]];
+    for (std::uint32_t v = 0; v < nv; ++v) {
+        if (m.vhalfedge_[v] == kInvalid) continue;
+        std::uint32_t n = 0;
+        for ([[maybe_unused]] Halfedge h : m.outgoing_halfedges(Vertex(v))) {
+            if (++n > out_count[v]) break;
+        }
+        if (n != out_count[v])
+            throw TopologyError("from_soup: " + vstr(v) +
+                                " is non-manifold: its triangles form " +
+                                std::string(n < out_count[v] ? "more than one fan" : "a broken fan") +
+                                " (pinched vertex)");
+    }
+    return m;
+}
+
+TriangleSoup SurfaceMesh::to_soup() const {
+    TriangleSoup s;
+    std::vector<std::uint32_t> index(vertices_size(), kInvalid);
+    for (Vertex v : vertices()) {
+        index[v.idx()] = static_cast<std::uint32_t>(s.points.size());
+        s.points.push_back(position(v));
+    }
+    s.triangles.reserve(n_faces());
+    for (Face f : faces()) {
+        const auto vs = face_vertices(f);
+        s.triangles.push_back({index[vs[0].idx()], index[vs[1].idx()], index[vs[2].idx()]});
+    }
+    return s;
+}
+
+// ---- queries ---------------------------------------------------------------------------------
+
+bool SurfaceMesh::is_closed() const {
+    for (Edge e : edges())
+        if (is_boundary(e)) return false;
+    return true;
+}
+
+std::size_t SurfaceMesh::valence(Vertex v) const {
+    std::size_t n = 0;
+    for ([[maybe_unused]] Halfedge h : outgoing_halfedges(v)) ++n;
+    return n;
+}
+
+Halfedge SurfaceMesh::find_halfedge(Vertex a, Vertex b) const {
+    for (Halfedge h : outgoing_halfedges(a))
+        if (to_vertex(h) == b) return h;
+    return {};
+}
+
+std::array<Vertex, 3> SurfaceMesh::face_vertices(Face f) const {
+    const Halfedge h = halfedge(f);
+    const Halfedge n = next(h);
+    return {to_vertex(h), to_vertex(n), to_vertex(next(n))};
+}
+
+std::vector<Vertex> SurfaceMesh::neighbors(Vertex v) const {
+    std::vector<Vertex> out;
+    for (Halfedge h : outgoing_halfedges(v)) out.push_back(to_vertex(h));
+    return out;
+}
+
+// ---- deletion helpers ------------------------------------------------------------------------
+
+void SurfaceMesh::delete_vertex(Vertex v) {
+    if (!vdeleted_[v.idx()]) {
+        vdeleted_[v.idx()] = true;
+        ++n_deleted_vertices_;
+    }
+}
+void SurfaceMesh::delete_edge(Edge e) {
+    if (!edeleted_[e.idx()]) {
+        edeleted_[e.idx()] = true;
+        ++n_deleted_edges_;
+    }
+}
+void SurfaceMesh::delete_face(Face f) {
+    if (!fdeleted_[f.idx()]) {
+        fdeleted_[f.idx()] = true;
+        ++n_deleted_faces_;
+    }
+}
+
+void SurfaceMesh::adjust_outgoing_halfedge(Vertex v) {
+    const Halfedge start = halfedge(v);
+    if (!start.is_valid()) return;
+    Halfedge h = start;
+    do {
+        if (is_boundary(h)) {
+            set_halfedge(v, h);
+            return;
+        }
+        h = ccw_rotated(h);
+    } while (h != start);
+}
+
+void SurfaceMesh::replace_in_cycle(Halfedge old, Halfedge by) {
+    const Halfedge p = prev(old), n = next(old);
+    set_next(p, by);
+    set_next(by, n);
+    const Face f = face(old);
+    set_face(by, f);
+    if (f.is_valid() && halfedge(f) == old) set_halfedge(f, by);
+}
+
+// ---- flips -----------------------------------------------------------------------------------
+
+bool SurfaceMesh::is_flip_ok(Edge e) const {
+    if (is_deleted(e) || is_boundary(e)) return false;
+    const Halfedge h0 = halfedge(e, 0), h1 = halfedge(e, 1);
+    const Vertex r = to_vertex(next(h0)), s = to_vertex(next(h1));
+    if (r == s) return false;
+    return !find_halfedge(r, s).is_valid();
+}
+
+void SurfaceMesh::flip(Edge e) {
+    DYNMESH_ASSERT(is_flip_ok(e), "flip: edge " + std::to_string(e.idx()) + " is not flippable");
+    // h0: p->q in (p,q,r) with a0: q->r, b0: r->p; h1: q->p in (q,p,s) with a1: p->s, b1: s->q.
+    const Halfedge h0 = halfedge(e, 0), h1 = halfedge(e, 1);
+    const Halfedge a0 = next(h0), b0 = next(a0);
+    const Halfedge a1 = next(h1), b1 = next(a1);
+    const Vertex p = to_vertex(h1), q = to_vertex(h0);
+    const Vertex r = to_vertex(a0), s = to_vertex(a1);
+    const Face f0 = face(h0), f1 = face(h1);
+    // New faces: f0 = (q, r, s) = a0, h0 (r->s), b1; f1 = (p, s, r) = a1, h1 (s->r), b0.
+    set_to(h0, s);
+    set_to(h1, r);
+    set_next(a0, h0);
+    set_next(h0, b1);
+    set_next(b1, a0);
+    set_next(a1, h1);
+    set_next(h1, b0);
+    set_next(b0, a1);
+    set_face(b1, f0);
+    set_face(b0, f1);
+    set_halfedge(f0, h0);
+    set_halfedge(f1, h1);
+    if (halfedge(p) == h0) set_halfedge(p, a1);
+    if (halfedge(q) == h1) set_halfedge(q, a0);
+}
+
+// ---- splits ----------------------------------------------------------------------------------
+
+Vertex SurfaceMesh::split_face(Face f, const Point3& p) {
+    DYNMESH_CHECK(is_valid(f) && !is_deleted(f), "split_face: face is deleted or invalid");
+    const Halfedge hab = halfedge(f), hbc = next(hab), hca = next(hbc);
+    const Vertex b = to_vertex(hab), c = to_vertex(hbc), a = to_vertex(hca);
+    const Vertex v = add_vertex(p);
+    const Halfedge xa = new_edge(a, v), xb = new_edge(b, v), xc = new_edge(c, v);
+    const Halfedge ya = twin(xa), yb = twin(xb), yc = twin(xc);
+    const Face f1 = new_face(), f2 = new_face();
+    // f = (a,b,v): hab, xb, ya ; f1 = (b,c,v): hbc, xc, yb ; f2 = (c,a,v): hca, xa, yc
+    set_next(hab, xb); set_next(xb, ya); set_next(ya, hab);
+    set_next(hbc, xc); set_next(xc, yb); set_next(yb, hbc);
+    set_next(hca, xa); set_next(xa, yc); set_next(yc, hca);
+    for (Halfedge h : {hab, xb, ya}) set_face(h, f);
+    for (Halfedge h : {hbc, xc, yb}) set_face(h, f1);
+    for (Halfedge h : {hca, xa, yc}) set_face(h, f2);
+    set_halfedge(f, hab);
+    set_halfedge(f1, hbc);
+    set_halfedge(f2, hca);
+    set_halfedge(v, ya);
+    return v;
+}
+
+Vertex SurfaceMesh::split_edge(Edge e, const Point3& pos) {
+    DYNMESH_CHECK(is_valid(e) && !is_deleted(e), "split_edge: edge is deleted or invalid");
+    const Halfedge h0 = halfedge(e, 0), h1 = halfedge(e, 1);  // h0: p->q, h1: q->p
+    const Vertex q = to_vertex(h0);
+    const Vertex m = add_vertex(pos);
+    const Halfedge n0 = new_edge(m, q), n1 = twin(n0);  // n0: m->q, n1: q->m
+    set_to(h0, m);                                      // h0: p->m, h1: m->p
+    if (halfedge(q) == h1) set_halfedge(q, n1);
+
+    // Side of h0: face (p,q,r) = h0, a0 (q->r), b0 (r->p).
+    if (!is_boundary(h0)) {
+        const Halfedge a0 = next(h0), b0 = next(a0);
+        const Vertex r = to_vertex(a0);
+        const Face f0 = face(h0), g0 = new_face();
+        const Halfedge t = new_edge(m, r), tt = twin(t);  // t: m->r, tt: r->m
+        // f0 = (p, m, r): h0, t, b0 ; g0 = (m, q, r): n0, a0, tt
+        set_next(h0, t); set_next(t, b0); set_next(b0, h0);
+        set_next(n0, a0); set_next(a0, tt); set_next(tt, n0);
+        set_face(t, f0);
+        for (Halfedge h : {n0, a0, tt}) set_face(h, g0);
+        set_halfedge(f0, h0);
+        set_halfedge(g0, n0);
+    } else {
+        // boundary loop: ... -> h0 (p->m) -> n0 (m->q) -> old next(h0)
+        const Halfedge after = next(h0);
+        set_next(h0, n0);
+        set_next(n0, after);
+    }
+    // Side of h1: face (q,p,s) = h1, a1 (p->s), b1 (s->q). Now h1 is m->p.
+    if (!is_boundary(h1)) {
+        const Halfedge a1 = next(h1), b1 = next(a1);
+        const Vertex s = to_vertex(a1);
+        const Face f1 = face(h1), g1 = new_face();
+        const Halfedge u = new_edge(s, m), uu = twin(u);  // u: s->m, uu: m->s
+        // f1 = (m, p, s): h1, a1, u ; g1 = (q, m, s): n1, uu, b1
+        set_next(h1, a1); set_next(a1, u); set_next(u, h1);
+        set_next(n1, uu); set_next(uu, b1); set_next(b1, n1);
+        set_face(u, f1);
+        for (Halfedge h : {n1, uu, b1}) set_face(h, g1);
+        set_halfedge(f1, h1);
+        set_halfedge(g1, n1);
+    } else {
+        // boundary loop: old prev(h1) -> n1 (q->m) -> h1 (m->p)
+        const Halfedge before = prev(h1);
+        set_next(before, n1);
+        set_next(n1, h1);
+    }
+    set_halfedge(m, n0);
+    adjust_outgoing_halfedge(m);
+    adjust_outgoing_halfedge(q);
+    return m;
+}
+
+// ---- collapse --------------------------------------------------------------------------------
+
+bool SurfaceMesh::is_collapse_ok(Halfedge h) const {
+    if (is_deleted(h)) return false;
+    const Halfedge o = twin(h);
+    const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
+    const Vertex vl = is_boundary(h) ? Vertex() : to_vertex(next(h));
+    const Vertex vr = is_boundary(o) ? Vertex() : to_vertex(next(o));
+    // A boundary edge's endpoints are both boundary; an interior edge joining two boundary
+    // vertices would pinch the surface.
+    if (is_boundary(v0) && is_boundary(v1) && !is_boundary(edge(h))) return false;
+    // Opposite vertices must keep valence >= 3 (else two triangles would coincide).
+    if (vl.is_valid() && valence(vl) <= 3 && !is_boundary(vl)) return false;
+    if (vr.is_valid() && valence(vr) <= 3 && !is_boundary(vr)) return false;
+    if (vl.is_valid() && vl == vr) return false;
+    // Link condition: the common neighbours of v0 and v1 are exactly vl and vr.
+    for (Halfedge g : outgoing_halfedges(v0)) {
+        const Vertex w = to_vertex(g);
+        if (w == v1 || w == vl || w == vr) continue;
+        if (find_halfedge(w, v1).is_valid()) return false;
+    }
+    // A closed tetrahedron cannot shrink further.
+    if (n_vertices() <= 4 && is_closed()) return false;
+    return true;
+}
+
+void SurfaceMesh::collapse(Halfedge h) {
+    DYNMESH_ASSERT(is_collapse_ok(h), "collapse: halfedge " + std::to_string(h.idx()) + " not collapsible");
+    const Halfedge o = twin(h);
+    const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
+
+    // 1. Every halfedge into v0 now points to v1.
+    for (Halfedge g : outgoing_halfedges(v0)) set_to(twin(g), v1);
+
+    // 2. Unlink h and o, removing their triangles.
+    auto remove_side = [&](Halfedge x) {
+        if (is_boundary(x)) {
+            // boundary loop: prev(x) -> x -> next(x) becomes prev(x) -> next(x)
+            set_next(prev(x), next(x));
+            return;
+        }
+        // triangle (v0, v1, w) = x, hn (v1 -> w), hp (w -> v0, now w -> v1)
+        const Halfedge hn = next(x), hp = next(hn);
+        const Halfedge on = twin(hn);  // w -> v1, outside the triangle
+        const Vertex w = to_vertex(hn);
+        delete_face(face(x));
+        // Keep the edge of hp; hp takes over on's place; delete hn's edge.
+        replace_in_cycle(on, hp);
+        if (halfedge(w) == on) set_halfedge(w, hp);
+        if (halfedge(v1) == hn) set_halfedge(v1, twin(hp));
+        delete_edge(edge(hn));
+    };
+    // An outgoing halfedge of v1 that survives: the kept edge of the h side.
+    const Halfedge keep = is_boundary(h) ? next(h) : twin(prev(h));
+    remove_side(h);
+    remove_side(o);
+    delete_edge(edge(h));
+    delete_vertex(v0);
+    set_halfedge(v0, Halfedge());
+    set_halfedge(v1, keep);
+    adjust_outgoing_halfedge(v1);
+}
+
+// ---- vertex removal --------------------------------------------------------------------------
+
+void SurfaceMesh::remove_vertex(Vertex v, std::span<const std::array<std::uint32_t, 3>> tris) {
+    const std::string where = "remove_vertex(" + vstr(v.idx()) + "): ";
+    DYNMESH_CHECK(is_valid(v) && !is_deleted(v), where + "vertex is deleted or invalid");
+    DYNMESH_CHECK(!is_boundary(v), where + "vertex is on the boundary or isolated");
+    std::vector<Halfedge> spokes;
+    for (Halfedge h : outgoing_halfedges(v)) spokes.push_back(h);
+    const std::size_t k = spokes.size();
+    DYNMESH_CHECK(k >= 3, where + "valence below 3");
+    std::vector<Vertex> link(k);
+    for (std::size_t i = 0; i < k; ++i) link[i] = to_vertex(spokes[i]);
+    {
+        std::vector<std::uint32_t> ids;
+        for (Vertex w : link) ids.push_back(w.idx());
+        std::sort(ids.begin(), ids.end());
+        DYNMESH_CHECK(std::adjacent_find(ids.begin(), ids.end()) == ids.end(),
+                      where + "link is not a simple cycle");
+    }
+    DYNMESH_CHECK(tris.size() == k - 2, where + "expected " + std::to_string(k - 2) +
+                                             " triangles for a link of " + std::to_string(k) +
+                                             " vertices, got " + std::to_string(tris.size()));
+    // Validate: directed edges used once; polygon sides i->i+1 exactly once; diagonals in
+    // both directions; no diagonal already an edge of the mesh.
+    std::unordered_map<std::uint64_t, int, PairHash> used;
+    for (const auto& t : tris) {
+        for (int j = 0; j < 3; ++j) {
+            const std::uint32_t a = t[j], b = t[(j + 1) % 3];
+            DYNMESH_CHECK(a < k && b < k && a != b, where + "bad triangle index");
+            DYNMESH_CHECK(++used[key(a, b)] == 1, where + "a directed edge is used twice");
+        }
+    }
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const std::uint32_t j = static_cast<std::uint32_t>((i + 1) % k);
+        DYNMESH_CHECK(used.count(key(i, j)) == 1 && used.count(key(j, i)) == 0,
+                      where + "triangles do not cover link side " + std::to_string(i));
+    }
+    for (const auto& [kk, cnt] : used) {
+        const auto a = static_cast<std::uint32_t>(kk >> 32), b = static_cast<std::uint32_t>(kk);
+        const bool side = (b == (a + 1) % k) || (a == (b + 1) % k);
+        if (side) continue;
+        DYNMESH_CHECK(used.count(key(b, a)) == 1, where + "diagonal used in one direction only");
+        DYNMESH_CHECK(!find_halfedge(link[a], link[b]).is_valid(),
+                      where + "diagonal (" + vstr(link[a].idx()) + ", " + vstr(link[b].idx()) +
+                          ") is already an edge of the mesh");
+    }
+
+    // Polygon sides g_i = next(spoke_i): link[i] -> link[i+1].
+    std::unordered_map<std::uint64_t, Halfedge, PairHash> he;
+    for (std::uint32_t i = 0; i < k; ++i)
+        he[key(i, static_cast<std::uint32_t>((i + 1) % k))] = next(spokes[i]);
+    // Delete the star.
+    std::vector<Face> free_faces;
+    for (std::size_t i = 0; i < k; ++i) {
+        free_faces.push_back(face(spokes[i]));
+        const Vertex w = link[i];
+        if (halfedge(w) == twin(spokes[i])) set_halfedge(w, he[key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % k))]);
+        delete_edge(edge(spokes[i]));
+    }
+    delete_vertex(v);
+    set_halfedge(v, Halfedge());
+    // Reuse k - 2 of the k faces, delete the other two.
+    for (std::size_t i = k - 2; i < k; ++i) delete_face(free_faces[i]);
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+        std::array<Halfedge, 3> hs;
+        for (int j = 0; j < 3; ++j) {
+            const std::uint32_t a = tris[t][j], b = tris[t][(j + 1) % 3];
+            auto it = he.find(key(a, b));
+            if (it == he.end()) {
+                const Halfedge nh = new_edge(link[a], link[b]);
+                he[key(a, b)] = nh;
+                he[key(b, a)] = twin(nh);
+                hs[j] = nh;
+            } else {
+                hs[j] = it->second;
+            }
+        }
+        const Face f = free_faces[t];
+        for (int j = 0; j < 3; ++j) {
+            set_next(hs[j], hs[(j + 1) % 3]);
+            set_face(hs[j], f);
+        }
+        set_halfedge(f, hs[0]);
+    }
+}
+
+bool SurfaceMesh::remove_vertex(Vertex v) {
+    if (!is_valid(v) || is_deleted(v) || is_boundary(v)) return false;
+    const std::vector<Vertex> link = neighbors(v);
+    const std::size_t k = link.size();
+    if (k < 3) return false;
+    {
+        std::vector<std::uint32_t> ids;
+        for (Vertex w : link) ids.push_back(w.idx());
+        std::sort(ids.begin(), ids.end());
+        if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) return false;
+    }
+    // Plane: through v, normal = area-weighted normal of the star.
+    Vec3 n{};
+    for (std::size_t i = 0; i < k; ++i)
+        n += triangle_normal_raw(position(v), position(link[i]), position(link[(i + 1) % k]));
+    n = normalized(n);
+    if (sqnorm(n) == 0) return false;
+    Vec3 u = std::abs(n.x) < 0.9 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
+    u = normalized(u);
+    const Vec3 w = cross(n, u);
+    std::vector<Point2> poly(k);
+    for (std::size_t i = 0; i < k; ++i) {
+        const Vec3 d = position(link[i]) - position(v);
+        poly[i] = {dot(d, u), dot(d, w)};
+    }
+    // Ear clipping, best ear first.
+    std::vector<std::uint32_t> ring(k);
+    std::iota(ring.begin(), ring.end(), 0u);
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    auto strictly_inside = [&](const Point2& a, const Point2& b, const Point2& c, const Point2& p) {
+        return cross(b - a, p - a) > 0 && cross(c - b, p - b) > 0 && cross(a - c, p - c) > 0;
+    };
+    while (ring.size() > 3) {
+        const std::size_t m = ring.size();
+        double best = -1;
+        std::size_t best_i = m;
+        for (std::size_t i = 0; i < m; ++i) {
+            const std::uint32_t ia = ring[(i + m - 1) % m], ib = ring[i], ic = ring[(i + 1) % m];
+            const Point2 &a = poly[ia], &b = poly[ib], &c = poly[ic];
+            if (cross(b - a, c - a) <= 0) continue;  // reflex or flat
+            bool empty = true;
+            for (std::uint32_t j : ring)
+                if (j != ia && j != ib && j != ic && strictly_inside(a, b, c, poly[j])) {
+                    empty = false;
+                    break;
+                }
+            if (!empty) continue;
+            if (find_halfedge(link[ia], link[ic]).is_valid()) continue;
+            const double q = min_angle(a, b, c);
+            if (q > best) {
+                best = q;
+                best_i = i;
+            }
+        }
+        if (best_i == m) return false;
+        tris.push_back({ring[(best_i + m - 1) % m], ring[best_i], ring[(best_i + 1) % m]});
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best_i));
+    }
+    tris.push_back({ring[0], ring[1], ring[2]});
+    if (cross(poly[ring[1]] - poly[ring[0]], poly[ring[2]] - poly[ring[0]]) <= 0) return false;
+    remove_vertex(v, tris);
+    return true;
+}
+
+// ---- garbage collection ----------------------------------------------------------------------
+
+void SurfaceMesh::garbage_collection() {
+    if (!has_garbage()) return;
+    std::vector<std::uint32_t> vmap(vertices_size(), kInvalid), emap(edges_size(), kInvalid),
+        fmap(faces_size(), kInvalid);
+    std::vector<std::uint32_t> vkeep, ekeep, fkeep;
+    for (std::uint32_t i = 0; i < vertices_size(); ++i)
+        if (!vdeleted_[i]) { vmap[i] = static_cast<std::uint32_t>(vkeep.size()); vkeep.push_back(i); }
+    for (std::uint32_t i = 0; i < edges_size(); ++i)
+        if (!edeleted_[i]) { emap[i] = static_cast<std::uint32_t>(ekeep.size()); ekeep.push_back(i); }
+    for (std::uint32_t i = 0; i < faces_size(); ++i)
+        if (!fdeleted_[i]) { fmap[i] = static_cast<std::uint32_t>(fkeep.size()); fkeep.push_back(i); }
+    auto hmap = [&](std::uint32_t h) {
+        return h == kInvalid ? kInvalid : ((emap[h >> 1] << 1) | (h & 1u));
+    };
+    auto mapv = [&](std::uint32_t v) { return v == kInvalid ? kInvalid : vmap[v]; };
+    auto mapf = [&](std::uint32_t f) { return f == kInvalid ? kInvalid : fmap[f]; };
+
+    std::vector<Point3> pos;
+    std::vector<std::uint32_t> vh;
+    pos.reserve(vkeep.size());
+    vh.reserve(vkeep.size());
+    for (std::uint32_t i : vkeep) {
+        pos.push_back(positions_[i]);
+        vh.push_back(hmap(vhalfedge_[i]));
+    }
+    std::vector<std::uint32_t> to, nx, pv, fc;
+    for (std::uint32_t e : ekeep)
+        for (std::uint32_t j = 0; j < 2; ++j) {
+            const std::uint32_t h = 2 * e + j;
+            to.push_back(mapv(hto_[h]));
+            nx.push_back(hmap(hnext_[h]));
+            pv.push_back(hmap(hprev_[h]));
+            fc.push_back(mapf(hface_[h]));
+        }
+    std::vector<std::uint32_t> fh;
+    for (std::uint32_t f : fkeep) fh.push_back(hmap(fhalfedge_[f]));
+    positions_.swap(pos);
+    vhalfedge_.swap(vh);
+    hto_.swap(to);
+    hnext_.swap(nx);
+    hprev_.swap(pv);
+    hface_.swap(fc);
+    fhalfedge_.swap(fh);
+    vdeleted_.assign(vkeep.size(), false);
+    edeleted_.assign(ekeep.size(), false);
+    fdeleted_.assign(fkeep.size(), false);
+    n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
+    vprops_.compact(vkeep);
+    eprops_.compact(ekeep);
+    fprops_.compact(fkeep);
+}
+
+}  // namespace dynmesh

@@ -1,0 +1,167 @@
+#include "dynmesh/mesh/surface_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "test_support.hpp"
+
+namespace dynmesh {
+namespace {
+
+void expect_valid_closed(const SurfaceMesh& m, long long euler, const std::string& ctx) {
+    const auto r = check_mesh(m, {.require_closed = true});
+    EXPECT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
+    EXPECT_EQ(r.euler, euler) << ctx;
+}
+
+TEST(SurfaceMesh, BuildsClosedMeshes) {
+    const SurfaceMesh oct = test::octahedron();
+    EXPECT_EQ(oct.n_vertices(), 6u);
+    EXPECT_EQ(oct.n_edges(), 12u);
+    EXPECT_EQ(oct.n_faces(), 8u);
+    expect_valid_closed(oct, 2, "octahedron");
+    for (Vertex v : oct.vertices()) EXPECT_EQ(oct.valence(v), 4u);
+    const SurfaceMesh ico = test::icosphere(2);
+    expect_valid_closed(ico, 2, "icosphere");
+}
+
+TEST(SurfaceMesh, OpenGridHasBoundary) {
+    const SurfaceMesh g = test::grid(3);
+    const auto r = check_mesh(g);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_FALSE(r.closed);
+    EXPECT_EQ(r.boundary_edges, 12u);
+    EXPECT_FALSE(check_mesh(g, {.require_closed = true}).ok());
+}
+
+TEST(SurfaceMesh, FromSoupRejectsBadTopology) {
+    TriangleSoup s;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    s.triangles = {{0, 1, 2}, {0, 1, 3}};  // same direction twice
+    EXPECT_THROW((void)SurfaceMesh::from_soup(s), TopologyError);
+    s.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+    EXPECT_THROW((void)SurfaceMesh::from_soup(s), TopologyError);
+    s.triangles = {{0, 1, 7}};
+    EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
+    s.triangles = {{0, 1, 1}};
+    EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
+    // Two triangles sharing only vertex 0: a pinched (non-manifold) vertex.
+    s.points.push_back({2, 2, 2});
+    s.triangles = {{0, 1, 2}, {0, 3, 4}};
+    try {
+        (void)SurfaceMesh::from_soup(s);
+        FAIL() << "pinched vertex accepted";
+    } catch (const TopologyError& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 0"), std::string::npos) << e.what();
+    }
+    s.triangles = {{0, 1, 2}};
+    s.points[0].x = std::nan("");
+    EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
+}
+
+TEST(SurfaceMesh, FlipKeepsOrientationAndVertices) {
+    // Planar quad p=(0,0), q=(1,0), r=(1/2,1), s=(1/2,-1): both new triangles CCW.
+    TriangleSoup s;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
+    s.triangles = {{0, 1, 2}, {1, 0, 3}};
+    SurfaceMesh m = SurfaceMesh::from_soup(s);
+    const Edge e = m.find_edge(Vertex(0), Vertex(1));
+    ASSERT_TRUE(m.is_flip_ok(e));
+    m.flip(e);
+    EXPECT_TRUE(m.find_edge(Vertex(2), Vertex(3)).is_valid());
+    EXPECT_FALSE(m.find_edge(Vertex(0), Vertex(1)).is_valid());
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        const Vec3 n = cross(m.position(v[1]) - m.position(v[0]), m.position(v[2]) - m.position(v[0]));
+        EXPECT_GT(n.z, 0) << "face " << f.idx() << " not CCW";
+    }
+    EXPECT_TRUE(check_mesh(m).ok()) << check_mesh(m).summary();
+    EXPECT_EQ(m.positions(), s.points);
+}
+
+TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
+    for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+        SurfaceMesh m = test::icosphere(2);
+        Rng rng(seed);
+        for (int step = 0; step < 400; ++step) {
+            const int op = static_cast<int>(rng.below(5));
+            const std::string ctx = "seed " + std::to_string(seed) + " step " + std::to_string(step) +
+                                    " op " + std::to_string(op);
+            if (op == 0) {
+                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+                if (!m.is_deleted(e) && m.is_flip_ok(e)) m.flip(e);
+            } else if (op == 1) {
+                const Face f(static_cast<std::uint32_t>(rng.below(m.faces_size())));
+                if (m.is_deleted(f)) continue;
+                const auto v = m.face_vertices(f);
+                m.split_face(f, normalized((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0));
+            } else if (op == 2) {
+                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+                if (m.is_deleted(e)) continue;
+                m.split_edge(e, normalized((m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))) * 0.5));
+            } else if (op == 3) {
+                const Halfedge h(static_cast<std::uint32_t>(rng.below(m.halfedges_size())));
+                if (!m.is_deleted(h) && m.is_collapse_ok(h)) m.collapse(h);
+            } else {
+                const Vertex v(static_cast<std::uint32_t>(rng.below(m.vertices_size())));
+                if (!m.is_deleted(v)) (void)m.remove_vertex(v);
+            }
+            const auto r = check_mesh(m, {.require_closed = true, .check_degenerate = false});
+            ASSERT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
+            ASSERT_EQ(r.euler, 2) << ctx;
+            if (step % 50 == 49) {
+                m.garbage_collection();
+                const auto r2 = check_mesh(m, {.require_closed = true, .check_degenerate = false});
+                ASSERT_TRUE(r2.ok()) << ctx << " after gc\n" << r2.summary("  ");
+            }
+        }
+    }
+}
+
+TEST(SurfaceMesh, SplitEdgeOnBoundary) {
+    SurfaceMesh g = test::grid(2);
+    for (Edge e : g.edges())
+        if (g.is_boundary(e)) {
+            g.split_edge(e, (g.position(g.vertex(e, 0)) + g.position(g.vertex(e, 1))) * 0.5);
+            break;
+        }
+    const auto r = check_mesh(g);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(r.euler, 1);
+}
+
+TEST(SurfaceMesh, RemoveVertexWithGivenTriangulation) {
+    SurfaceMesh m = test::icosphere(1);
+    Vertex v(0);
+    const std::size_t k = m.valence(v);
+    ASSERT_EQ(k, 5u);
+    std::vector<std::array<std::uint32_t, 3>> fan = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+    m.remove_vertex(v, fan);
+    expect_valid_closed(m, 2, "after remove");
+    // A bad triangulation is refused and leaves the mesh unchanged.
+    SurfaceMesh m2 = test::icosphere(1);
+    std::vector<std::array<std::uint32_t, 3>> bad = {{0, 2, 1}, {0, 2, 3}, {0, 3, 4}};
+    EXPECT_THROW(m2.remove_vertex(Vertex(0), bad), InvalidInput);
+    expect_valid_closed(m2, 2, "after refused remove");
+    EXPECT_EQ(m2.n_vertices(), test::icosphere(1).n_vertices());
+}
+
+TEST(SurfaceMesh, PropertiesFollowGarbageCollection) {
+    SurfaceMesh m = test::icosphere(1);
+    auto tag = m.add_vertex_property<int>("v:tag", -1);
+    for (Vertex v : m.vertices()) tag[v] = static_cast<int>(v.idx());
+    ASSERT_TRUE(m.remove_vertex(Vertex(3)));
+    m.garbage_collection();
+    for (Vertex v : m.vertices()) EXPECT_NE(tag[v], 3);
+    EXPECT_EQ(tag.vector().size(), m.n_vertices());
+    SurfaceMesh copy = m;
+    auto ctag = copy.get_vertex_property<int>("v:tag");
+    ASSERT_TRUE(ctag.is_valid());
+    ctag[Vertex(0)] = 1000;
+    EXPECT_NE(tag[Vertex(0)], 1000);
+}
+
+}  // namespace
+}  // namespace dynmesh

@@ -1,0 +1,22 @@
+#pragma once
+/// \file Fixtures and checkers shared by the tests.
+
+#include <filesystem>
+#include <string>
+
+#include "dynmesh/mesh/surface_mesh.hpp"
+
+namespace dynmesh::test {
+
+/// Path of a file in ../shared/data (the real inputs).
+std::filesystem::path shared_data(const std::string& relative);
+/// A fresh, empty scratch directory for one test.
+std::filesystem::path scratch_dir(const std::string& name);
+/// An octahedron (6 vertices, closed, outward oriented).
+SurfaceMesh octahedron();
+/// A closed icosphere of the given subdivision level (level 0: icosahedron), radius 1.
+SurfaceMesh icosphere(int level);
+/// A planar square grid of n x n quads split into triangles (open, with boundary).
+SurfaceMesh grid(int n);
+
+}  // namespace dynmesh::test
