@@ -1,0 +1,71 @@
+#pragma once
+/// \file When is an edge flippable? The angle rule of Cheng & Jin ("Edge flips in surface
+/// meshes", Definition 3), the diametric-ball rule of the deforming-surface paper (§4), and
+/// the planar empty-circle rule.
+///
+/// Edge pq lies in triangles pqr and qps (p->q is halfedge(e, 0)); a flip replaces them by
+/// prs and qrs.
+
+#include <string_view>
+
+#include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+
+namespace dynmesh {
+
+enum class FlipRule {
+    AngleDef3,      ///< Definition 3 of the edge-flip paper: all five conditions
+    DiametricBall,  ///< s inside the diametric ball of pqr, or r inside that of pqs
+    PlanarIncircle  ///< z = 0 meshes: pqrs convex and s strictly inside circle(pqr)
+};
+
+[[nodiscard]] std::string_view to_string(FlipRule rule);
+/// Parses "angle" / "def3", "delaunay" / "diametric", "planar". \throw InvalidInput.
+[[nodiscard]] FlipRule parse_flip_rule(std::string_view name);
+
+/// Why an edge is or is not flippable (counted in reports).
+enum class FlipVerdict {
+    Flippable,
+    Boundary,        ///< a boundary edge, or a deleted one
+    DiagonalExists,  ///< rs is already an edge (Definition 3 (v))
+    Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area
+    RuleFails,       ///< the rule's geometric condition does not hold
+    NotImproving     ///< the rule holds but the guard against cycles does not (counted)
+};
+
+/// The four corners of edge e: p->q is halfedge(e, 0), r opposite it, s opposite its twin.
+struct EdgeQuad {
+    Vertex p, q, r, s;
+};
+[[nodiscard]] EdgeQuad edge_quad(const SurfaceMesh& mesh, Edge e);
+
+/// Relative cosine slack of Definition 3 (strict inequalities by this margin).
+inline constexpr double kAngleSlack = 1e-12;
+
+/// Definition 3 (i)-(iv) for the points of the quad, without the edge test (v); also
+/// requires that the smallest angle of the new pair beats that of the old pair by more than
+/// kAngleSlack (in cosine), so that rounding cannot make flips cycle.
+[[nodiscard]] bool def3_condition(const Point3& p, const Point3& q, const Point3& r,
+                                  const Point3& s);
+/// The diametric rule (exact predicates): s strictly inside the diametric ball of pqr or r
+/// strictly inside that of pqs, and the flip lowers the larger circumradius of the pair.
+[[nodiscard]] FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& r,
+                                              const Point3& s);
+/// Planar rule (exact predicates on x, y): pqrs convex with r, s on opposite sides of pq, and
+/// s strictly inside the circumcircle of pqr.
+[[nodiscard]] bool planar_condition(const Point3& p, const Point3& q, const Point3& r,
+                                    const Point3& s);
+/// True when the triangle is degenerate: area < 1e-14 * (longest edge)^2.
+[[nodiscard]] bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c);
+
+/// Full test of edge e under `rule`, including boundary, degeneracy and condition (v).
+[[nodiscard]] FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule);
+[[nodiscard]] inline bool is_flippable(const SurfaceMesh& mesh, Edge e, FlipRule rule) {
+    return flip_verdict(mesh, e, rule) == FlipVerdict::Flippable;
+}
+
+/// Definition 4: pq is illegal iff r lies inside the diametric ball of pqs and s inside that
+/// of pqr (exact predicates). Boundary edges are legal.
+[[nodiscard]] bool is_illegal(const SurfaceMesh& mesh, Edge e);
+
+}  // namespace dynmesh

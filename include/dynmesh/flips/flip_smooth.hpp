@@ -1,0 +1,65 @@
+#pragma once
+/// \file Flipping to termination: globally in linear time (edge-flip paper, L4.3) and locally
+/// around a vertex subset with the practical doubling-window method (§6 of that paper).
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+
+namespace dynmesh {
+
+/// Called now and then with (flips so far, queue length); for progress output.
+using FlipProgress = std::function<void(std::size_t flips, std::size_t queued)>;
+
+struct FlipOptions {
+    FlipRule rule = FlipRule::AngleDef3;
+    /// Diagnostic cap: stop after max_flips_per_vertex * n_vertices flips (converged = false).
+    /// The theory bounds flips by O(n) for dense meshes.
+    std::size_t max_flips_per_vertex = 100;
+    FlipProgress progress = {};
+};
+
+struct FlipReport {
+    std::size_t flips = 0;           ///< flips performed
+    std::size_t checks = 0;          ///< flippability tests evaluated
+    std::size_t pushes = 0;          ///< queue insertions
+    std::size_t degenerate = 0;      ///< tests that met a degenerate triangle (never flipped)
+    std::size_t not_improving = 0;   ///< tests refused by the anti-cycling guard
+    bool converged = false;          ///< the queue emptied (no flippable edge is left)
+    double seconds = 0;              ///< wall time of the flipping alone
+};
+
+/// Queue-based flipping until no edge is flippable under options.rule (FIFO with an in-queue
+/// flag; stale entries are re-checked at pop time). Vertex positions and indices never
+/// change. Face and edge indices are kept (a flip reuses its edge and two faces).
+/// \pre mesh has no garbage (call garbage_collection() first). \throw InvalidInput otherwise.
+FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options = {});
+
+struct LocalFlipOptions {
+    FlipRule rule = FlipRule::AngleDef3;
+    std::size_t m0 = 3;           ///< first window radius in edge hops
+    std::size_t max_rounds = 16;  ///< doubling rounds before giving up (converged = false)
+};
+
+struct LocalFlipReport {
+    FlipReport flips;                 ///< accumulated over all rounds
+    std::size_t rounds = 0;           ///< doubling rounds run
+    std::size_t final_m = 0;          ///< the window radius of the last round
+    std::vector<Face> changed_faces;  ///< faces touched by a flip (sorted, unique)
+    /// The stop test checks each triangle of F against the triangles of the first ring
+    /// outside the window (the cheaper variant of §4.4 of the digest), not a global search.
+    bool converged = false;
+};
+
+/// Flips around the vertex set V: runs the queue on the edges whose endpoints are both within
+/// m hops of V, m = m0, 2 m0, ..., until every triangle incident to V or to a neighbour of V
+/// has a diametric ball that meets only triangles within the window.
+/// Cost is proportional to the window, not to the mesh.
+LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
+                           const LocalFlipOptions& options = {});
+
+}  // namespace dynmesh

@@ -1,0 +1,115 @@
+#include "dynmesh/flips/flip_rules.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+
+namespace dynmesh {
+
+std::string_view to_string(FlipRule rule) {
+    switch (rule) {
+        case FlipRule::AngleDef3: return "angle";
+        case FlipRule::DiametricBall: return "delaunay";
+        case FlipRule::PlanarIncircle: return "planar";
+    }
+    return "?";
+}
+
+FlipRule parse_flip_rule(std::string_view name) {
+    if (name == "angle" || name == "def3") return FlipRule::AngleDef3;
+    if (name == "delaunay" || name == "diametric") return FlipRule::DiametricBall;
+    if (name == "planar") return FlipRule::PlanarIncircle;
+    throw InvalidInput("unknown flip criterion '" + std::string(name) +
+                       "' (expected angle, delaunay or planar)");
+}
+
+EdgeQuad edge_quad(const SurfaceMesh& m, Edge e) {
+    const Halfedge h0 = SurfaceMesh::halfedge(e, 0), h1 = SurfaceMesh::halfedge(e, 1);
+    return {m.to_vertex(h1), m.to_vertex(h0), m.opposite_vertex(h0), m.opposite_vertex(h1)};
+}
+
+bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c) {
+    const double l2 = std::max({sqdistance(a, b), sqdistance(b, c), sqdistance(a, c)});
+    const double area = 0.5 * norm(cross(b - a, c - a));
+    return !(area >= 1e-14 * l2) || l2 == 0.0;
+}
+
+bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    // Unit vectors along the six segments; cos of the angle xyz at y is dot(e_yx, e_yz).
+    const Vec3 pq = normalized(q - p), pr = normalized(r - p), ps = normalized(s - p);
+    const Vec3 qr = normalized(r - q), qs = normalized(s - q), rs = normalized(s - r);
+    // at p
+    const double c_qpr = dot(pq, pr), c_qps = dot(pq, ps), c_rps = dot(pr, ps);
+    // at q
+    const double c_pqr = -dot(pq, qr), c_pqs = -dot(pq, qs), c_rqs = dot(qr, qs);
+    // at r
+    const double c_prq = dot(pr, qr), c_prs = -dot(pr, rs), c_qrs = -dot(qr, rs);
+    // at s
+    const double c_psq = dot(ps, qs), c_psr = dot(ps, rs), c_qsr = dot(qs, rs);
+    const double t = kAngleSlack;
+    // angle A > min(pi/2, X)  <=>  cos A < max(0, cos X)
+    // angle A > max(X, Y)     <=>  cos A < min(cos X, cos Y)
+    const bool i = c_prs < std::max(0.0, c_pqs) - t && c_psr < std::max(0.0, c_pqr) - t;
+    const bool ii = c_qrs < std::max(0.0, c_qps) - t && c_qsr < std::max(0.0, c_qpr) - t;
+    const bool iii = c_rps < std::min(c_qpr, c_qps) - t && c_rqs < std::min(c_pqr, c_pqs) - t;
+    const bool iv = c_prq < std::min(c_prs, c_qrs) - t && c_psq < std::min(c_psr, c_qsr) - t;
+    if (!(i && ii && iii && iv)) return false;
+    // The smallest angle has the largest cosine.
+    const double old_max = std::max({c_qpr, c_pqr, c_prq, c_qps, c_pqs, c_psq});
+    const double new_max = std::max({c_rps, c_prs, c_psr, c_rqs, c_qrs, c_qsr});
+    return new_max < old_max - t;
+}
+
+FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& r,
+                                const Point3& s) {
+    const bool s_in = in_diametric_ball(p, q, r, s) == Sign::Positive;
+    const bool r_in = s_in || in_diametric_ball(p, q, s, r) == Sign::Positive;
+    if (!r_in) return FlipVerdict::RuleFails;
+    // Termination guard: the larger circumradius of the pair must drop.
+    const double old_r = std::max(circumradius(p, q, r), circumradius(q, p, s));
+    const double new_r = std::max(circumradius(p, s, r), circumradius(q, r, s));
+    return new_r < old_r ? FlipVerdict::Flippable : FlipVerdict::NotImproving;
+}
+
+bool planar_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    const Point2 p2{p.x, p.y}, q2{q.x, q.y}, r2{r.x, r.y}, s2{s.x, s.y};
+    // pqr is CCW in a valid planar mesh; r and s must be on opposite sides of pq, and p, q
+    // on opposite sides of rs (convex quad).
+    const Sign side_r = orient2d(p2, q2, r2), side_s = orient2d(p2, q2, s2);
+    if (side_r == Sign::Zero || side_s == Sign::Zero || side_r == side_s) return false;
+    const Sign side_p = orient2d(r2, s2, p2), side_q = orient2d(r2, s2, q2);
+    if (side_p == Sign::Zero || side_q == Sign::Zero || side_p == side_q) return false;
+    const Sign in = side_r == Sign::Positive ? incircle(p2, q2, r2, s2) : incircle(q2, p2, r2, s2);
+    return in == Sign::Positive;
+}
+
+FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
+    if (m.is_deleted(e) || m.is_boundary(e)) return FlipVerdict::Boundary;
+    const EdgeQuad k = edge_quad(m, e);
+    if (k.r == k.s || m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
+    const Point3 &p = m.position(k.p), &q = m.position(k.q), &r = m.position(k.r),
+                 &s = m.position(k.s);
+    if (rule == FlipRule::PlanarIncircle)
+        return planar_condition(p, q, r, s) ? FlipVerdict::Flippable : FlipVerdict::RuleFails;
+    if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s) ||
+        is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
+        return FlipVerdict::Degenerate;
+    if (rule == FlipRule::AngleDef3)
+        return def3_condition(p, q, r, s) ? FlipVerdict::Flippable : FlipVerdict::RuleFails;
+    return diametric_condition(p, q, r, s);
+}
+
+bool is_illegal(const SurfaceMesh& m, Edge e) {
+    if (m.is_deleted(e) || m.is_boundary(e)) return false;
+    const EdgeQuad k = edge_quad(m, e);
+    const Point3 &p = m.position(k.p), &q = m.position(k.q), &r = m.position(k.r),
+                 &s = m.position(k.s);
+    if (collinear(p, q, r) || collinear(p, q, s)) return false;
+    return in_diametric_ball(p, q, s, r) == Sign::Positive &&
+           in_diametric_ball(p, q, r, s) == Sign::Positive;
+}
+
+}  // namespace dynmesh

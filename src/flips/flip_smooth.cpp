@@ -1,0 +1,210 @@
+#include "dynmesh/flips/flip_smooth.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+
+namespace dynmesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The FIFO flip loop shared by global and local flipping. `allowed(e)` restricts which
+/// edges may enter the queue; `on_flip(e)` observes each flip.
+class FlipQueue {
+public:
+    FlipQueue(SurfaceMesh& m, FlipRule rule, FlipReport& report)
+        : mesh_(m), rule_(rule), report_(report), in_queue_(m.edges_size(), 0) {}
+
+    bool test(Edge e) {
+        ++report_.checks;
+        const FlipVerdict v = flip_verdict(mesh_, e, rule_);
+        if (v == FlipVerdict::Degenerate) ++report_.degenerate;
+        if (v == FlipVerdict::NotImproving) ++report_.not_improving;
+        return v == FlipVerdict::Flippable;
+    }
+    void push_if_flippable(Edge e) {
+        if (in_queue_[e.idx()] || !test(e)) return;
+        in_queue_[e.idx()] = 1;
+        queue_.push_back(e);
+        ++report_.pushes;
+    }
+    template <class Allowed, class OnFlip>
+    void run(std::size_t max_flips, const FlipProgress& progress, Allowed&& allowed,
+             OnFlip&& on_flip) {
+        report_.converged = true;
+        while (!queue_.empty()) {
+            const Edge e = queue_.front();
+            queue_.pop_front();
+            in_queue_[e.idx()] = 0;
+            if (!test(e)) continue;
+            if (report_.flips >= max_flips) {
+                report_.converged = false;
+                break;
+            }
+            const Halfedge h0 = SurfaceMesh::halfedge(e, 0), h1 = SurfaceMesh::halfedge(e, 1);
+            mesh_.flip(e);
+            ++report_.flips;
+            on_flip(e);
+            // The four outer edges of the quad.
+            for (Halfedge h : {mesh_.next(h0), mesh_.prev(h0), mesh_.next(h1), mesh_.prev(h1)}) {
+                const Edge b = SurfaceMesh::edge(h);
+                if (allowed(b)) push_if_flippable(b);
+            }
+            if (progress && (report_.flips & 0xFFFFF) == 0) progress(report_.flips, queue_.size());
+        }
+        queue_.clear();
+    }
+
+private:
+    SurfaceMesh& mesh_;
+    FlipRule rule_;
+    FlipReport& report_;
+    std::vector<char> in_queue_;
+    std::deque<Edge> queue_;
+};
+
+}  // namespace
+
+FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
+    DYNMESH_CHECK(!mesh.has_garbage(), "flip_all: the mesh has deleted elements; call garbage_collection() first");
+    FlipReport report;
+    const auto t0 = Clock::now();
+    FlipQueue q(mesh, options.rule, report);
+    for (Edge e : mesh.edges()) q.push_if_flippable(e);
+    const std::size_t cap = std::max<std::size_t>(1, options.max_flips_per_vertex) *
+                            std::max<std::size_t>(mesh.n_vertices(), 1);
+    q.run(cap, options.progress, [](Edge) { return true; }, [](Edge) {});
+    report.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return report;
+}
+
+namespace {
+
+/// Hop distances from V up to `limit` (BFS in the current edge graph).
+std::unordered_map<std::uint32_t, std::uint32_t> hop_distances(const SurfaceMesh& m,
+                                                               std::span<const Vertex> V,
+                                                               std::size_t limit) {
+    std::unordered_map<std::uint32_t, std::uint32_t> dist;
+    std::vector<Vertex> frontier;
+    for (Vertex v : V)
+        if (dist.emplace(v.idx(), 0).second) frontier.push_back(v);
+    for (std::uint32_t d = 1; d <= limit && !frontier.empty(); ++d) {
+        std::vector<Vertex> next;
+        for (Vertex v : frontier)
+            for (Halfedge h : m.outgoing_halfedges(v)) {
+                const Vertex w = m.to_vertex(h);
+                if (dist.emplace(w.idx(), d).second) next.push_back(w);
+            }
+        frontier.swap(next);
+    }
+    return dist;
+}
+
+/// Distance from point x to triangle abc is below rho (conservative test via the closest
+/// point on the triangle).
+double point_triangle_distance(const Point3& x, const Point3& a, const Point3& b, const Point3& c) {
+    // Ericson, Real-Time Collision Detection, closest point on triangle.
+    const Vec3 ab = b - a, ac = c - a, ap = x - a;
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return distance(x, a);
+    const Vec3 bp = x - b;
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return distance(x, b);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return distance(x, a + ab * (d1 / (d1 - d3)));
+    const Vec3 cp = x - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return distance(x, c);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return distance(x, a + ac * (d2 / (d2 - d6)));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return distance(x, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    const double denom = 1.0 / (va + vb + vc);
+    return distance(x, a + ab * (vb * denom) + ac * (vc * denom));
+}
+
+}  // namespace
+
+LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
+                           const LocalFlipOptions& options) {
+    DYNMESH_CHECK(!mesh.has_garbage(), "flip_local: the mesh has deleted elements; call garbage_collection() first");
+    for (Vertex v : V)
+        DYNMESH_CHECK(mesh.is_valid(v) && !mesh.is_deleted(v),
+                      "flip_local: vertex " + std::to_string(v.idx()) + " is not in the mesh");
+    DYNMESH_CHECK(options.m0 >= 1, "flip_local: m0 must be at least 1");
+    LocalFlipReport out;
+    const auto t0 = Clock::now();
+    std::unordered_set<std::uint32_t> changed;
+    std::size_t m = options.m0;
+    FlipQueue q(mesh, options.rule, out.flips);
+    for (std::size_t round = 0; round < options.max_rounds; ++round, m *= 2) {
+        ++out.rounds;
+        out.final_m = m;
+        const auto dist = hop_distances(mesh, V, m);
+        auto inside = [&](Vertex v) { return dist.count(v.idx()) != 0; };
+        auto allowed = [&](Edge e) { return inside(mesh.vertex(e, 0)) && inside(mesh.vertex(e, 1)); };
+        for (const auto& [vi, d] : dist)
+            for (Halfedge h : mesh.outgoing_halfedges(Vertex(vi))) {
+                const Edge e = SurfaceMesh::edge(h);
+                if (vi < mesh.to_vertex(h).idx() && allowed(e)) q.push_if_flippable(e);
+            }
+        q.run(SIZE_MAX, {}, allowed, [&](Edge e) {
+            changed.insert(mesh.face(SurfaceMesh::halfedge(e, 0)).idx());
+            changed.insert(mesh.face(SurfaceMesh::halfedge(e, 1)).idx());
+        });
+        // Stop test. Marked: triangles with all corners within m hops (after the flips).
+        const auto d2 = hop_distances(mesh, V, m + 1);
+        auto hop = [&](Vertex v) {
+            auto it = d2.find(v.idx());
+            return it == d2.end() ? m + 2 : std::size_t(it->second);
+        };
+        std::vector<Face> F, first_outside;
+        std::unordered_set<std::uint32_t> seenF, seenO;
+        for (const auto& [vi, d] : d2)
+            for (Halfedge h : mesh.outgoing_halfedges(Vertex(vi))) {
+                const Face f = mesh.face(h);
+                if (!f.is_valid()) continue;
+                const auto vs = mesh.face_vertices(f);
+                const std::size_t lo = std::min({hop(vs[0]), hop(vs[1]), hop(vs[2])});
+                const std::size_t hi = std::max({hop(vs[0]), hop(vs[1]), hop(vs[2])});
+                if (lo <= 1 && seenF.insert(f.idx()).second) F.push_back(f);
+                if (hi > m && seenO.insert(f.idx()).second) first_outside.push_back(f);
+            }
+        bool ok = true;
+        for (Face f : F) {
+            const auto vs = mesh.face_vertices(f);
+            const Point3 &a = mesh.position(vs[0]), &b = mesh.position(vs[1]), &c = mesh.position(vs[2]);
+            const Point3 cc = circumcenter(a, b, c);
+            const double rad = distance(cc, a);
+            for (Face g : first_outside) {
+                const auto ws = mesh.face_vertices(g);
+                if (point_triangle_distance(cc, mesh.position(ws[0]), mesh.position(ws[1]),
+                                            mesh.position(ws[2])) < rad) {
+                    ok = false;
+                    break;
+                }
+            }
+            if (!ok) break;
+        }
+        if (ok) {
+            out.converged = true;
+            break;
+        }
+    }
+    out.changed_faces.reserve(changed.size());
+    for (std::uint32_t f : changed) out.changed_faces.push_back(Face(f));
+    std::sort(out.changed_faces.begin(), out.changed_faces.end());
+    out.flips.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    out.flips.converged = out.converged;
+    return out;
+}
+
+}  // namespace dynmesh
