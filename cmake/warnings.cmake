@@ -1,6 +1,7 @@
 # Flags live on an INTERFACE target, never in CMAKE_CXX_FLAGS.
 add_library(dynmesh_options INTERFACE)
-target_compile_options(dynmesh_options INTERFACE -Wall -Wextra -Wpedantic -Wno-unused-parameter)
+target_compile_options(dynmesh_options INTERFACE -Wall -Wextra -Wpedantic -Wno-unused-parameter
+                                            -Wno-missing-field-initializers)
 if(DYNMESH_WERROR)
   target_compile_options(dynmesh_options INTERFACE -Werror)
 endif()

@@ -89,17 +89,29 @@ bool planar_condition(const Point3& p, const Point3& q, const Point3& r, const P
 FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
     if (m.is_deleted(e) || m.is_boundary(e)) return FlipVerdict::Boundary;
     const EdgeQuad k = edge_quad(m, e);
-    if (k.r == k.s || m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
+    if (k.r == k.s) return FlipVerdict::DiagonalExists;
     const Point3 &p = m.position(k.p), &q = m.position(k.q), &r = m.position(k.r),
                  &s = m.position(k.s);
-    if (rule == FlipRule::PlanarIncircle)
-        return planar_condition(p, q, r, s) ? FlipVerdict::Flippable : FlipVerdict::RuleFails;
-    if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s) ||
-        is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
-        return FlipVerdict::Degenerate;
-    if (rule == FlipRule::AngleDef3)
-        return def3_condition(p, q, r, s) ? FlipVerdict::Flippable : FlipVerdict::RuleFails;
-    return diametric_condition(p, q, r, s);
+    // The geometric rule first: most edges fail it, and it is cheaper than the edge lookup.
+    FlipVerdict v = FlipVerdict::Flippable;
+    if (rule == FlipRule::PlanarIncircle) {
+        if (!planar_condition(p, q, r, s)) return FlipVerdict::RuleFails;
+    } else if (rule == FlipRule::AngleDef3) {
+        // Degenerate triangles make the cosines NaN, and every comparison with NaN fails.
+        if (!def3_condition(p, q, r, s)) return FlipVerdict::RuleFails;
+        if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s) ||
+            is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
+            return FlipVerdict::Degenerate;
+    } else {
+        if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s))
+            return FlipVerdict::Degenerate;  // the diametric ball is undefined
+        v = diametric_condition(p, q, r, s);
+        if (v == FlipVerdict::RuleFails) return v;
+        if (is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
+            return FlipVerdict::Degenerate;
+    }
+    if (m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
+    return v;
 }
 
 bool is_illegal(const SurfaceMesh& m, Edge e) {

@@ -29,8 +29,9 @@ public:
         if (v == FlipVerdict::NotImproving) ++report_.not_improving;
         return v == FlipVerdict::Flippable;
     }
-    void push_if_flippable(Edge e) {
-        if (in_queue_[e.idx()] || !test(e)) return;
+    /// Queues e unless it is queued already; it is tested once, when popped.
+    void push(Edge e) {
+        if (in_queue_[e.idx()]) return;
         in_queue_[e.idx()] = 1;
         queue_.push_back(e);
         ++report_.pushes;
@@ -55,7 +56,7 @@ public:
             // The four outer edges of the quad.
             for (Halfedge h : {mesh_.next(h0), mesh_.prev(h0), mesh_.next(h1), mesh_.prev(h1)}) {
                 const Edge b = SurfaceMesh::edge(h);
-                if (allowed(b)) push_if_flippable(b);
+                if (allowed(b)) push(b);
             }
             if (progress && (report_.flips & 0xFFFFF) == 0) progress(report_.flips, queue_.size());
         }
@@ -77,7 +78,7 @@ FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
     FlipReport report;
     const auto t0 = Clock::now();
     FlipQueue q(mesh, options.rule, report);
-    for (Edge e : mesh.edges()) q.push_if_flippable(e);
+    for (Edge e : mesh.edges()) q.push(e);
     const std::size_t cap = std::max<std::size_t>(1, options.max_flips_per_vertex) *
                             std::max<std::size_t>(mesh.n_vertices(), 1);
     q.run(cap, options.progress, [](Edge) { return true; }, [](Edge) {});
@@ -154,7 +155,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
         for (const auto& [vi, d] : dist)
             for (Halfedge h : mesh.outgoing_halfedges(Vertex(vi))) {
                 const Edge e = SurfaceMesh::edge(h);
-                if (vi < mesh.to_vertex(h).idx() && allowed(e)) q.push_if_flippable(e);
+                if (vi < mesh.to_vertex(h).idx() && allowed(e)) q.push(e);
             }
         q.run(SIZE_MAX, {}, allowed, [&](Edge e) {
             changed.insert(mesh.face(SurfaceMesh::halfedge(e, 0)).idx());

@@ -28,15 +28,18 @@ TEST(Def3, PlanarHandCases) {
 }
 
 TEST(Def3, DiagonalAlreadyAnEdgeIsNotFlippable) {
-    // In a tetrahedron every edge's other diagonal exists already: condition (v).
+    // A flat tetrahedron: the pair on pq is thin (Definition 3 (i)-(iv) hold), but the other
+    // diagonal rs is already an edge, so condition (v) fails.
     TriangleSoup s;
-    s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    s.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.2, 0}, {0.5, -0.2, 0}};
+    s.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 3, 0}, {3, 2, 1}};
     const SurfaceMesh tet = SurfaceMesh::from_soup(s);
-    for (Edge e : tet.edges()) {
-        EXPECT_EQ(flip_verdict(tet, e, FlipRule::AngleDef3), FlipVerdict::DiagonalExists);
-        EXPECT_EQ(flip_verdict(tet, e, FlipRule::DiametricBall), FlipVerdict::DiagonalExists);
-    }
+    const Edge pq = tet.find_edge(Vertex(0), Vertex(1));
+    ASSERT_TRUE(def3_condition(s.points[0], s.points[1], s.points[2], s.points[3]));
+    EXPECT_FALSE(tet.is_flip_ok(pq));
+    EXPECT_EQ(flip_verdict(tet, pq, FlipRule::AngleDef3), FlipVerdict::DiagonalExists);
+    EXPECT_EQ(flip_verdict(tet, pq, FlipRule::DiametricBall), FlipVerdict::DiagonalExists);
+    for (Edge e : tet.edges()) EXPECT_FALSE(is_flippable(tet, e, FlipRule::AngleDef3));
 }
 
 TEST(Def3, BoundaryAndDegenerate) {

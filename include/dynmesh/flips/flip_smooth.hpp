@@ -25,9 +25,9 @@ struct FlipOptions {
 
 struct FlipReport {
     std::size_t flips = 0;           ///< flips performed
-    std::size_t checks = 0;          ///< flippability tests evaluated
+    std::size_t checks = 0;          ///< flippability tests evaluated (one per queue pop)
     std::size_t pushes = 0;          ///< queue insertions
-    std::size_t degenerate = 0;      ///< tests that met a degenerate triangle (never flipped)
+    std::size_t degenerate = 0;      ///< tests refused for a degenerate triangle (never flipped)
     std::size_t not_improving = 0;   ///< tests refused by the anti-cycling guard
     bool converged = false;          ///< the queue emptied (no flippable edge is left)
     double seconds = 0;              ///< wall time of the flipping alone
