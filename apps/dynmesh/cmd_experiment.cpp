@@ -1,0 +1,299 @@
+/// `dynmesh sample` (a mesh of samples of an analytic surface) and `dynmesh experiment`
+/// (the edge-flip paper's tables, reproduced side by side with the paper's numbers).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/flips/experiment.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/metrics/statistics.hpp"
+#include "dynmesh/reconstruct/advancing_front.hpp"
+#include "dynmesh/reconstruct/restricted_delaunay.hpp"
+#include "dynmesh/shapes/surface.hpp"
+
+namespace dynmesh::cli {
+
+namespace {
+
+// ---- dynmesh sample ------------------------------------------------------------------------
+
+struct SampleArgs {
+    CommonOptions common;
+    std::string surface = "sphere", output, method = "rdt";
+    std::size_t samples = 10000;
+    std::uint64_t seed = 1;
+};
+
+void run_sample(const SampleArgs& a) {
+    Progress progress("sample", a.common.quiet);
+    const auto surface = make_surface(a.surface);
+    DYNMESH_CHECK(a.samples >= 4, "--samples must be at least 4");
+    progress.stage("sampling " + surface->spec());
+    const std::vector<Point3> pts = surface->sample_uniform(a.samples, a.seed);
+    progress.stage("meshing");
+    nlohmann::json rep = {{"command", "sample"}, {"surface", surface->spec()}, {"samples", a.samples},
+                          {"seed", a.seed}, {"method", a.method}, {"output", a.output}};
+    SurfaceMesh mesh;
+    if (a.method == "rdt") {
+        auto r = restricted_delaunay_with_report(pts, *surface);
+        mesh = std::move(r.mesh);
+        rep["seconds_mesh"] = r.report.seconds;
+        rep["unused_samples"] = r.report.unused_samples;
+    } else {
+        auto r = reconstruct_advancing_front_with_report(pts);
+        mesh = std::move(r.mesh);
+        rep["seconds_mesh"] = r.report.seconds;
+        rep["unused_samples"] = r.report.unused_samples;
+    }
+    rep["vertices"] = mesh.n_vertices();
+    rep["faces"] = mesh.n_faces();
+    progress.stage("writing " + a.output);
+    write_mesh(mesh, a.output);
+    write_report(a.common, rep);
+    std::cout << "sample: " << surface->spec() << ", " << a.samples << " samples -> "
+              << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces (" << a.method
+              << ")\n  wrote " << a.output << "\n";
+}
+
+// ---- dynmesh experiment --------------------------------------------------------------------
+
+struct ExperimentArgs {
+    CommonOptions common;
+    std::size_t samples = 10000;
+    std::size_t seeds = 5;
+    std::vector<std::string> surfaces = {"sphere", "torus:5,3"};
+    std::vector<std::string> meshes;
+    std::string out_dir;
+    std::string criterion = "angle";
+};
+
+/// The paper's Tables 1-3: (mean, sd, max) of normal deviation and of 180 - dihedral.
+struct PaperRow {
+    double n_mean, n_sd, n_max, d_mean, d_sd, d_max;
+};
+const std::map<std::string, std::array<PaperRow, 3>>& paper_tables() {
+    static const std::map<std::string, std::array<PaperRow, 3>> t = {
+        {"sphere:1", {PaperRow{1.5, 0.56, 3.8, 1.4, 0.87, 5.3}, PaperRow{5.5, 7.68, 59, 8.8, 10.56, 60},
+                      PaperRow{1.5, 0.56, 3.8, 1.4, 0.87, 5.3}}},
+        {"torus:5,3", {PaperRow{2.6, 1.50, 16.8, 2.6, 1.93, 16.3}, PaperRow{6.8, 8.11, 63.7, 10, 11.09, 60},
+                       PaperRow{2.6, 1.49, 15.8, 2.6, 1.92, 16}}},
+    };
+    return t;
+}
+
+/// Mean and SD across seeds of one statistic.
+struct Across {
+    SummaryAccumulator acc;
+    void add(double x) { acc.add(x); }
+    [[nodiscard]] std::string str(int prec = 2) const {
+        const Summary s = acc.summary();
+        char buf[64];
+        if (acc.count() > 1)
+            std::snprintf(buf, sizeof buf, "%.*f±%.*f", prec, s.mean, prec, s.sd);
+        else
+            std::snprintf(buf, sizeof buf, "%.*f", prec, s.mean);
+        return buf;
+    }
+    [[nodiscard]] double mean() const { return acc.summary().mean; }
+};
+
+struct RowStats {
+    Across n_mean, n_sd, n_max, d_mean, d_sd, d_max;
+    void add(const QualityReport& q) {
+        if (q.normal_dev_deg) {
+            n_mean.add(q.normal_dev_deg->mean);
+            n_sd.add(q.normal_dev_deg->sd);
+            n_max.add(q.normal_dev_deg->max);
+        }
+        d_mean.add(q.dihedral_dev_deg.mean);
+        d_sd.add(q.dihedral_dev_deg.sd);
+        d_max.add(q.dihedral_dev_deg.max);
+    }
+    [[nodiscard]] nlohmann::json json() const {
+        nlohmann::json j = {{"dihedral_dev_mean_deg", d_mean.mean()},
+                            {"dihedral_dev_sd_deg", d_sd.mean()},
+                            {"dihedral_dev_max_deg", d_max.mean()}};
+        if (n_mean.acc.count())
+            j.update({{"normal_dev_mean_deg", n_mean.mean()},
+                      {"normal_dev_sd_deg", n_sd.mean()},
+                      {"normal_dev_max_deg", n_max.mean()}});
+        return j;
+    }
+};
+
+void write_histograms(const std::filesystem::path& path, const SmoothingExperimentResult& r) {
+    std::ostringstream os;
+    const Histogram& h = r.worsened.dihedral_dev_hist;
+    os << "bin_lo_deg,bin_hi_deg,initial_dihedral,worsened_dihedral,smoothed_dihedral";
+    const bool normals = r.worsened.normal_dev_hist.has_value();
+    if (normals) os << ",initial_normal,worsened_normal,smoothed_normal";
+    os << "\n";
+    for (std::size_t i = 0; i < h.bins.size(); ++i) {
+        os << h.lo + h.bin_width() * double(i) << "," << h.lo + h.bin_width() * double(i + 1) << ","
+           << r.initial.dihedral_dev_hist.bins[i] << "," << h.bins[i] << ","
+           << r.smoothed.dihedral_dev_hist.bins[i];
+        if (normals)
+            os << "," << r.initial.normal_dev_hist->bins[i] << "," << r.worsened.normal_dev_hist->bins[i]
+               << "," << r.smoothed.normal_dev_hist->bins[i];
+        os << "\n";
+    }
+    write_text_atomic(path, os.str());
+}
+
+std::string safe_name(std::string s) {
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return s;
+}
+
+nlohmann::json run_case(const ExperimentArgs& a, const std::string& name, const ImplicitSurface* surface,
+                        const SurfaceMesh* given, Progress& progress) {
+    const FlipRule rule = parse_flip_rule(a.criterion);
+    RowStats rows[3];
+    Across flips_per_vertex, shared, seconds;
+    std::size_t vertices = 0;
+    const std::size_t n_seeds = std::max<std::size_t>(1, a.seeds);
+    for (std::size_t seed = 1; seed <= n_seeds; ++seed) {
+        progress.stage(name + ", seed " + std::to_string(seed));
+        SurfaceMesh mesh = given ? *given : restricted_delaunay(surface->sample_uniform(a.samples, seed), *surface);
+        vertices = mesh.n_vertices();
+        SmoothingExperimentOptions opt;
+        opt.surface = surface;
+        opt.worsen.seed = seed;
+        opt.flip.rule = rule;
+        SurfaceMesh worsened, smoothed;
+        const SmoothingExperimentResult r = run_smoothing_experiment(mesh, opt, &worsened, &smoothed);
+        rows[0].add(r.initial);
+        rows[1].add(r.worsened);
+        rows[2].add(r.smoothed);
+        flips_per_vertex.add(double(r.flip.flips) / double(mesh.n_vertices()));
+        shared.add(100.0 * r.shared_edge_fraction);
+        seconds.add(r.flip.seconds);
+        if (seed == 1 && !a.out_dir.empty()) {
+            const std::filesystem::path dir(a.out_dir);
+            const std::string base = safe_name(name);
+            write_histograms(dir / (base + "_histograms.csv"), r);
+            write_mesh(mesh, dir / (base + "_initial.ply"));
+            write_mesh(worsened, dir / (base + "_worsened.ply"));
+            write_mesh(smoothed, dir / (base + "_smoothed.ply"));
+        }
+    }
+    // Print the table.
+    const bool normals = rows[0].n_mean.acc.count() > 0;
+    const auto& tables = paper_tables();
+    const auto paper = surface ? tables.find(surface->spec()) : tables.end();
+    std::cout << "\n" << name << ": " << vertices << " vertices, " << n_seeds << " seed(s)"
+              << (n_seeds > 1 ? " (mean±sd across seeds)" : "") << ", criterion " << a.criterion << "\n";
+    std::cout << "  mesh       source   | normal deviation (deg)         | 180 - dihedral (deg)\n"
+              << "                      | mean      sd        max        | mean      sd        max\n";
+    const char* labels[3] = {"initial ", "worsened", "smoothed"};
+    // Pads to a display width (the ± sign is two bytes but one column).
+    auto col = [](const std::string& t, std::size_t width = 10) {
+        std::size_t shown = 0;
+        for (unsigned char c : t) shown += (c & 0xC0) != 0x80;
+        return t + std::string(shown < width ? width - shown : 1, ' ');
+    };
+    auto num = [](double x, int prec) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.*f", prec, x);
+        return std::string(buf);
+    };
+    for (int i = 0; i < 3; ++i) {
+        const RowStats& r = rows[i];
+        std::cout << "  " << labels[i] << "   dynmesh  | "
+                  << (normals ? col(r.n_mean.str()) + col(r.n_sd.str()) + col(r.n_max.str(1))
+                              : col("-") + col("-") + col("-"))
+                  << " | " << col(r.d_mean.str()) + col(r.d_sd.str()) + col(r.d_max.str(1)) << "\n";
+        if (paper != tables.end()) {
+            const PaperRow& p = paper->second[i];
+            std::cout << "             paper    | " << col(num(p.n_mean, 2)) << col(num(p.n_sd, 2))
+                      << col(num(p.n_max, 1)) << " | " << col(num(p.d_mean, 2)) << col(num(p.d_sd, 2))
+                      << col(num(p.d_max, 1)) << "\n";
+        }
+    }
+    std::cout << "  flips per vertex " << flips_per_vertex.str(3) << ", flip time " << seconds.str(4)
+              << " s, edges shared with the initial mesh " << shared.str(2) << " %\n";
+    nlohmann::json j = {{"name", name},
+                        {"vertices", vertices},
+                        {"seeds", n_seeds},
+                        {"initial", rows[0].json()},
+                        {"worsened", rows[1].json()},
+                        {"smoothed", rows[2].json()},
+                        {"flips_per_vertex", flips_per_vertex.mean()},
+                        {"seconds_flip", seconds.mean()},
+                        {"shared_edges_percent", shared.mean()}};
+    if (paper != tables.end()) {
+        nlohmann::json pj = nlohmann::json::array();
+        for (const PaperRow& p : paper->second)
+            pj.push_back({{"normal_dev_mean_deg", p.n_mean}, {"normal_dev_sd_deg", p.n_sd},
+                          {"normal_dev_max_deg", p.n_max}, {"dihedral_dev_mean_deg", p.d_mean},
+                          {"dihedral_dev_sd_deg", p.d_sd}, {"dihedral_dev_max_deg", p.d_max}});
+        j["paper"] = pj;
+    }
+    return j;
+}
+
+void run_experiment(const ExperimentArgs& a) {
+    Progress progress("experiment", a.common.quiet);
+    if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
+    nlohmann::json cases = nlohmann::json::array();
+    for (const std::string& spec : a.surfaces) {
+        const auto surface = make_surface(spec);
+        const std::string name = surface->spec() + ", " + std::to_string(a.samples) + " uniform samples";
+        cases.push_back(run_case(a, name, surface.get(), nullptr, progress));
+    }
+    for (const std::string& file : a.meshes) {
+        progress.stage("reading " + file);
+        const SurfaceMesh mesh = load_mesh(file);
+        require_closed_manifold(mesh, file);
+        cases.push_back(run_case(a, std::filesystem::path(file).filename().string(), nullptr, &mesh, progress));
+    }
+    write_report(a.common, {{"command", "experiment"}, {"criterion", a.criterion}, {"cases", cases}});
+    if (!a.out_dir.empty()) std::cout << "\nwrote meshes and histogram CSVs to " << a.out_dir << "\n";
+}
+
+}  // namespace
+
+void register_sample(CLI::App& root, int& result) {
+    auto args = std::make_shared<SampleArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "sample", "Sample an analytic surface uniformly and mesh the samples");
+    sub->add_option("--surface", args->surface, "sphere[:R], ellipsoid:a,b,c or torus:R,r")->capture_default_str();
+    sub->add_option("--samples", args->samples, "Number of samples")->capture_default_str();
+    sub->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+    sub->add_option("--method", args->method,
+                    "rdt: restricted Delaunay (surface known); advancing-front: reconstruction")
+        ->check(CLI::IsMember({"rdt", "advancing-front"}))
+        ->capture_default_str();
+    sub->add_option("-o,--output", args->output, "Output mesh")->required();
+    add_common_options(*sub, args->common);
+    sub->callback([args, &result] { result = guarded("sample", [&] { run_sample(*args); }); });
+}
+
+void register_experiment(CLI::App& root, int& result) {
+    auto args = std::make_shared<ExperimentArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "experiment",
+        "Reproduce the edge-flip paper's tables: build, worsen and smooth meshes, compare with the paper");
+    sub->add_option("--samples", args->samples, "Samples per analytic surface")->capture_default_str();
+    sub->add_option("--seeds", args->seeds, "Seeds 1..N; statistics are averaged across seeds")
+        ->capture_default_str();
+    sub->add_option("--surface", args->surfaces, "Analytic surfaces (repeatable)")->capture_default_str();
+    sub->add_option("--mesh", args->meshes, "Real meshes to worsen and smooth as well (repeatable)");
+    sub->add_option("--criterion", args->criterion, "angle or delaunay")
+        ->check(CLI::IsMember({"angle", "delaunay"}))
+        ->capture_default_str();
+    sub->add_option("--out", args->out_dir, "Directory for meshes and histogram CSVs (seed 1)");
+    add_common_options(*sub, args->common);
+    sub->callback([args, &result] { result = guarded("experiment", [&] { run_experiment(*args); }); });
+}
+
+}  // namespace dynmesh::cli

@@ -1,0 +1,157 @@
+/// `dynmesh flip` and `dynmesh worsen`: edge-flip smoothing and the paper's worsening.
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/flips/diagnostics.hpp"
+#include "dynmesh/flips/flip_smooth.hpp"
+#include "dynmesh/flips/worsen.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/mesh/check.hpp"
+
+namespace dynmesh::cli {
+
+namespace {
+
+struct FlipArgs {
+    CommonOptions common;
+    std::string input, output, criterion = "angle";
+    std::size_t max_flips_per_vertex = 100;
+    bool check = false;
+};
+
+void run_flip(const FlipArgs& a) {
+    using Clock = std::chrono::steady_clock;
+    ensure_not_same_file(a.input, a.output);
+    const FlipRule rule = parse_flip_rule(a.criterion);
+    Progress progress("flip", a.common.quiet);
+    progress.stage("reading " + a.input);
+    auto t0 = Clock::now();
+    SurfaceMesh mesh = load_mesh(a.input);
+    require_closed_manifold(mesh, a.input);
+    const double seconds_read = seconds_since(t0);
+
+    progress.stage("flipping");
+    FlipOptions opt{.rule = rule, .max_flips_per_vertex = a.max_flips_per_vertex};
+    opt.progress = [&](std::size_t flips, std::size_t queued) {
+        progress.detail(std::to_string(flips) + " flips, " + std::to_string(queued) + " queued");
+    };
+    const FlipReport r = flip_all(mesh, opt);
+
+    nlohmann::json rep = {{"command", "flip"},
+                          {"input", a.input},
+                          {"output", a.output},
+                          {"criterion", std::string(to_string(rule))},
+                          {"vertices", mesh.n_vertices()},
+                          {"faces", mesh.n_faces()},
+                          {"edges", mesh.n_edges()},
+                          {"flips", r.flips},
+                          {"checks", r.checks},
+                          {"pushes", r.pushes},
+                          {"degenerate_tests", r.degenerate},
+                          {"not_improving_tests", r.not_improving},
+                          {"converged", r.converged},
+                          {"seconds_flip", r.seconds},
+                          {"seconds_read", seconds_read}};
+    bool check_ok = true;
+    if (a.check) {
+        progress.stage("checking");
+        const MeshCheckReport c = check_mesh(mesh, {.require_closed = true});
+        const FlipDiagnostics d = flip_diagnostics(mesh, rule);
+        check_ok = c.ok() && d.flippable == 0;
+        rep["check"] = {{"ok", check_ok},
+                        {"problems", c.problems},
+                        {"flippable_edges", d.flippable},
+                        {"illegal_edges", d.illegal},
+                        {"nonempty_shrunk_balls", d.nonempty_balls}};
+        if (!c.ok()) std::cerr << c.summary("dynmesh flip: check: ");
+    }
+    progress.stage("writing " + a.output);
+    t0 = Clock::now();
+    write_mesh(mesh, a.output);
+    rep["seconds_write"] = seconds_since(t0);
+    write_report(a.common, rep);
+    std::cout << "flip: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces, "
+              << r.flips << " flips (" << to_string(rule) << "), " << r.checks << " checks, "
+              << r.seconds << " s" << (r.converged ? "" : ", NOT converged (flip cap reached)")
+              << "\n  wrote " << a.output << "\n";
+    if (!check_ok) throw InternalError("--check failed: the flipped mesh violates an invariant");
+}
+
+struct WorsenArgs {
+    CommonOptions common;
+    std::string input, output;
+    WorsenOptions options;
+};
+
+void run_worsen(const WorsenArgs& a) {
+    ensure_not_same_file(a.input, a.output);
+    Progress progress("worsen", a.common.quiet);
+    progress.stage("reading " + a.input);
+    SurfaceMesh mesh = load_mesh(a.input);
+    require_closed_manifold(mesh, a.input);
+    progress.stage("worsening");
+    const auto t0 = std::chrono::steady_clock::now();
+    const WorsenReport r = worsen(mesh, a.options);
+    const double secs = seconds_since(t0);
+    progress.stage("writing " + a.output);
+    write_mesh(mesh, a.output);
+    write_report(a.common, {{"command", "worsen"},
+                            {"input", a.input},
+                            {"output", a.output},
+                            {"vertices", mesh.n_vertices()},
+                            {"faces", mesh.n_faces()},
+                            {"flips", r.flips},
+                            {"attempts", r.attempts},
+                            {"rejected", r.rejected},
+                            {"rounds", a.options.rounds},
+                            {"seed", a.options.seed},
+                            {"seconds_worsen", secs}});
+    std::cout << "worsen: " << r.flips << " random flips kept, " << r.rejected
+              << " undone (dihedral floor " << a.options.min_dihedral_deg << " deg)\n  wrote "
+              << a.output << "\n";
+}
+
+}  // namespace
+
+void register_flip(CLI::App& root, int& result) {
+    auto args = std::make_shared<FlipArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "flip", "Smooth a closed triangle mesh by edge flips until no edge is flippable");
+    sub->add_option("input", args->input, "Input mesh (.off .obj .ply .stl)")->required();
+    sub->add_option("-o,--output", args->output, "Output mesh (.off .obj .ply .vtk .vtp)")->required();
+    sub->add_option("--criterion", args->criterion,
+                    "angle: Definition 3 of the edge-flip paper; delaunay: diametric-ball rule")
+        ->check(CLI::IsMember({"angle", "delaunay"}))
+        ->capture_default_str();
+    sub->add_option("--max-flips-per-vertex", args->max_flips_per_vertex,
+                    "Diagnostic cap on flips (per vertex)")
+        ->capture_default_str();
+    sub->add_flag("--check", args->check, "Verify the result (manifold, nothing flippable)");
+    add_common_options(*sub, args->common);
+    sub->callback([args, &result] { result = guarded("flip", [&] { run_flip(*args); }); });
+}
+
+void register_worsen(CLI::App& root, int& result) {
+    auto args = std::make_shared<WorsenArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "worsen", "Randomly flip edges (the edge-flip paper's worsening) to make a bad mesh");
+    sub->add_option("input", args->input, "Input mesh")->required();
+    sub->add_option("-o,--output", args->output, "Output mesh")->required();
+    sub->add_option("--rounds", args->options.rounds, "Passes over the edges")->capture_default_str();
+    sub->add_option("--seed", args->options.seed, "Random seed")->capture_default_str();
+    sub->add_option("--probability", args->options.probability, "Chance to flip each edge")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    sub->add_option("--min-dihedral", args->options.min_dihedral_deg,
+                    "Undo a flip that makes a dihedral angle smaller than this (degrees)")
+        ->check(CLI::Range(0.0, 180.0))
+        ->capture_default_str();
+    add_common_options(*sub, args->common);
+    sub->callback([args, &result] { result = guarded("worsen", [&] { run_worsen(*args); }); });
+}
+
+}  // namespace dynmesh::cli

@@ -1,0 +1,82 @@
+#pragma once
+/// \file Initial meshes from surface samples: the restricted Delaunay triangulation (RDT) of
+/// a point sample with respect to a known implicit surface.
+///
+/// The RDT keeps the Delaunay facets whose dual Voronoi edge meets the surface. For a dense
+/// enough sample (an epsilon-sample with small epsilon, Amenta-Bern / Edelsbrunner-Shah) it is
+/// a closed 2-manifold homeomorphic to the surface whose vertices are exactly the samples.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/shapes/surface.hpp"
+
+namespace dynmesh {
+
+struct RestrictedDelaunayOptions {
+    /// Signed-distance evaluations allowed per dual Voronoi edge while deciding whether it
+    /// meets the surface (see restricted_delaunay()); an edge still undecided then comes
+    /// within a tiny distance of the surface without crossing it, and counts as not meeting
+    /// it. Almost every edge is decided by its two end values alone.
+    std::size_t max_evaluations_per_edge = 256;
+};
+
+struct RestrictedDelaunayReport {
+    std::size_t samples = 0;         ///< input size
+    std::size_t vertices_used = 0;   ///< samples that are mesh vertices
+    std::size_t unused_samples = 0;  ///< samples in no restricted facet
+    std::size_t facets = 0;          ///< triangles of the result
+    std::size_t delaunay_cells = 0;  ///< finite tetrahedra of the 3D Delaunay triangulation
+    /// Input index of each mesh vertex: vertex v is samples[vertex_sample[v.idx()]]. Strictly
+    /// increasing, since vertices keep the order of the samples.
+    std::vector<std::uint32_t> vertex_sample;
+    double seconds = 0;  ///< wall-clock time of the whole call
+};
+
+struct RestrictedDelaunayResult {
+    SurfaceMesh mesh;
+    RestrictedDelaunayReport report;
+};
+
+/// The restricted Delaunay triangulation of `samples` with respect to `surface`, as a closed,
+/// outward-oriented mesh (each facet's normal agrees with surface.normal() at its centroid).
+/// Vertices are the samples that occur in a kept facet, in input order, with bit-identical
+/// positions; triangles are in a canonical order, so equal input gives an equal mesh.
+///
+/// How facets are chosen: the 3D Delaunay triangulation uses CGAL's exact predicates (and its
+/// symbolic perturbation for cospherical points); Voronoi vertices (circumcentres) are computed
+/// in double precision. A facet is kept when its dual Voronoi edge (segment between the two
+/// circumcentres, or for a convex-hull facet the outward ray, cut beyond surface.bbox())
+/// meets the surface. This is decided with surface.signed_distance(), which is 1-Lipschitz:
+/// a sign change proves a crossing, and a piece whose end distances have one sign and sum to
+/// more than its length cannot meet the surface; undecided pieces are halved. So an edge that
+/// enters and leaves the surface is kept too, as the definition of the RDT requires; only an
+/// edge that grazes the surface without crossing it (undecided after
+/// options.max_evaluations_per_edge evaluations) is not.
+/// \pre surface.signed_distance() is the Euclidean signed distance (or a 1-Lipschitz lower
+///      bound of its magnitude with the same sign), and the surface lies inside surface.bbox().
+/// \throw InvalidInput for fewer than 4 samples, non-finite or coincident samples (naming
+///        their indices), samples that are all coplanar, or an RDT that is not a closed
+///        2-manifold ("... is not a 2-manifold: N non-manifold edges (...); the sample is too
+///        sparse for this surface"). A closed manifold is returned as is: for a very sparse
+///        sample it may have the wrong topology, which this function cannot know; compare
+///        the Euler characteristic if it matters.
+[[nodiscard]] SurfaceMesh restricted_delaunay(std::span<const Point3> samples,
+                                              const ImplicitSurface& surface,
+                                              const RestrictedDelaunayOptions& options = {});
+/// As restricted_delaunay(), also returning what happened.
+[[nodiscard]] RestrictedDelaunayResult restricted_delaunay_with_report(
+    std::span<const Point3> samples, const ImplicitSurface& surface,
+    const RestrictedDelaunayOptions& options = {});
+
+/// restricted_delaunay(surface.sample_uniform(n, seed), surface): a closed mesh of the
+/// surface with n area-uniform random vertices (n must be large enough for the surface; e.g.
+/// 10,000 suffice for torus:5,3).
+[[nodiscard]] SurfaceMesh sample_and_mesh(const ImplicitSurface& surface, std::size_t n,
+                                          std::uint64_t seed);
+
+}  // namespace dynmesh

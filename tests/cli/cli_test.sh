@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# End-to-end checks of the dynmesh CLI. usage: cli_test.sh CASE DYNMESH DATA_DIR WORK_DIR
+set -uo pipefail
+case_name=$1 bin=$2 data=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "FAIL [$case_name]: $*" >&2; exit 1; }
+# run EXPECTED_EXIT CMD...: runs, captures stdout/stderr, checks the exit code.
+run() {
+    local want=$1; shift
+    "$@" >out.txt 2>err.txt
+    local got=$?
+    [ "$got" -eq "$want" ] || { cat out.txt err.txt >&2; fail "exit $got (wanted $want): $*"; }
+}
+json_get() { python3 -c "import json,sys; d=json.load(open('$1')); print(d$2)"; }
+mesh=$data/meshes/blobby.off
+
+case $case_name in
+help)
+    run 0 "$bin" --help
+    for c in flip worsen stats check sample experiment; do
+        run 0 "$bin" $c --help
+        grep -q -- "--report" out.txt || fail "$c --help does not mention --report"
+    done
+    "$bin" flip >/dev/null 2>&1 && fail "flip without arguments succeeded"
+    "$bin" flip "$mesh" -o x.off --criterion bogus >/dev/null 2>&1 && fail "bad criterion accepted"
+    ;;
+worsen_flip_stats)
+    run 0 "$bin" worsen "$mesh" -o w.off --seed 3 --report w.json --quiet
+    [ "$(json_get w.json "['flips']")" -gt 100 ] || fail "worsen made too few flips"
+    run 0 "$bin" flip w.off -o s.ply --report f.json --check --quiet
+    for k in vertices faces flips seconds_flip; do json_get f.json "['$k']" >/dev/null || fail "flip report lacks $k"; done
+    [ "$(json_get f.json "['flips']")" -gt 0 ] || fail "no flips"
+    [ "$(json_get f.json "['check']['flippable_edges']")" -eq 0 ] || fail "flippable edges left"
+    run 0 "$bin" stats s.ply --report st.json
+    for k in vertices faces euler closed min_angle_deg dihedral_dev_mean_deg dihedral_dev_max_deg; do
+        json_get st.json "['$k']" >/dev/null || fail "stats report lacks $k"
+    done
+    [ "$(json_get st.json "['euler']")" = "2" ] || fail "Euler characteristic changed"
+    run 0 "$bin" stats w.off --report sw.json
+    python3 - <<PY || fail "smoothing did not improve the dihedral statistics"
+import json
+w = json.load(open("sw.json")); s = json.load(open("st.json"))
+assert s["dihedral_dev_mean_deg"] < 0.6 * w["dihedral_dev_mean_deg"], (s, w)
+assert s["min_angle_deg"] > w["min_angle_deg"]
+PY
+    ;;
+keeps_vertices)
+    run 0 "$bin" worsen "$mesh" -o w.off --quiet
+    run 0 "$bin" flip w.off -o s.off --quiet
+    nv=$(sed -n 2p w.off | cut -d' ' -f1)
+    diff <(sed -n "3,$((nv + 2))p" w.off) <(sed -n "3,$((nv + 2))p" s.off) >/dev/null || fail "vertex lines differ"
+    cmp -s w.off s.off && fail "flip changed nothing"
+    true
+    ;;
+bad_inputs)
+    for f in "$data"/meshes/invalid/*; do
+        run 1 "$bin" flip "$f" -o out.off --quiet
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "error for $f is not one line: $(cat err.txt)"
+        grep -q "$(basename "$f")" err.txt || fail "error for $f does not name the file: $(cat err.txt)"
+        [ -e out.off ] && fail "an output was written for $f"
+    done
+    run 1 "$bin" stats does_not_exist.off
+    grep -q "does_not_exist.off" err.txt || fail "missing file not named"
+    printf 'OFF\n3 1 0\n0 0 0\nnan 1 0\n0 1 0\n3 0 1 2\n' > nan.off
+    run 1 "$bin" stats nan.off
+    grep -qi "vertex" err.txt || fail "NaN not reported with its vertex: $(cat err.txt)"
+    run 1 "$bin" flip "$data/meshes/defective/cube_quad.off" -o out.off
+    grep -qi "triangle" err.txt || fail "quad faces not reported: $(cat err.txt)"
+    ;;
+non_manifold)
+    run 1 "$bin" flip "$data/meshes/defective/cow_nonmanifold_vertex.obj" -o out.off
+    grep -qi "manifold" err.txt || fail "non-manifold vertex not reported: $(cat err.txt)"
+    run 1 "$bin" flip "$data/meshes/defective/cube-shuffled.off" -o out.off
+    grep -qiE "orient|direction" err.txt || fail "inconsistent orientation not reported: $(cat err.txt)"
+    ;;
+open_mesh)
+    run 1 "$bin" flip "$data/meshes/defective/mesh_with_border.off" -o out.off
+    grep -q "not a closed" err.txt || fail "open mesh not refused: $(cat err.txt)"
+    run 0 "$bin" stats "$data/meshes/defective/mesh_with_border.off" --report r.json
+    [ "$(json_get r.json "['closed']")" = "False" ] || fail "open mesh reported closed"
+    ;;
+same_file)
+    cp "$mesh" in.off
+    before=$(sha256sum in.off)
+    run 1 "$bin" flip in.off -o in.off
+    run 1 "$bin" worsen in.off -o ./in.off
+    [ "$(sha256sum in.off)" = "$before" ] || fail "input was modified"
+    ;;
+sample_stats)
+    run 0 "$bin" sample --surface sphere --samples 3000 --seed 2 -o sph.off --quiet
+    run 0 "$bin" stats sph.off --surface sphere --hausdorff --report r.json
+    for k in normal_dev_mean_deg normal_dev_max_deg hausdorff; do json_get r.json "['$k']" >/dev/null || fail "lacks $k"; done
+    run 0 "$bin" sample --surface torus:5,3 --samples 5000 -o tor.ply --quiet
+    run 0 "$bin" stats tor.ply --surface torus:5,3 --report t.json
+    [ "$(json_get t.json "['euler']")" = "0" ] || fail "torus Euler characteristic"
+    run 1 "$bin" stats tor.ply --surface torus:3,5
+    grep -q "torus" err.txt || fail "bad surface spec not reported"
+    ;;
+experiment)
+    run 0 "$bin" experiment --samples 3000 --seeds 2 --out exp --report e.json --quiet
+    grep -q "paper" out.txt || fail "no paper rows printed"
+    python3 - <<PY || fail "experiment results out of line"
+import json
+d = json.load(open("e.json"))
+for c in d["cases"]:
+    i, w, s = c["initial"], c["worsened"], c["smoothed"]
+    assert w["dihedral_dev_max_deg"] <= 60.0 + 1e-9, c
+    assert w["dihedral_dev_mean_deg"] >= 2 * s["dihedral_dev_mean_deg"], c
+    assert s["dihedral_dev_mean_deg"] <= 1.05 * i["dihedral_dev_mean_deg"], c
+    assert s["normal_dev_mean_deg"] <= 1.05 * i["normal_dev_mean_deg"], c
+PY
+    ls exp/*_histograms.csv >/dev/null || fail "no histogram CSV"
+    ;;
+check_cmd)
+    run 0 "$bin" check "$mesh" --closed --self-intersections
+    run 1 "$bin" check "$data/meshes/defective/mesh_with_border.off" --closed
+    grep -q "boundary" out.txt || fail "boundary not listed"
+    run 1 "$bin" check "$data/meshes/defective/tetra_intersected_by_triangle.off" --self-intersections
+    ;;
+report_atomic)
+    run 1 "$bin" stats "$mesh" --report no_such_dir/r.json
+    [ -e no_such_dir ] && fail "created a directory"
+    grep -q "no_such_dir" err.txt || fail "report path not named"
+    ;;
+*) fail "unknown case" ;;
+esac
+echo "ok [$case_name]"
