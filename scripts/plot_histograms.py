@@ -43,15 +43,15 @@ def main():
             if f"initial_{kind}" not in h:
                 ax.set_axis_off()
                 continue
-            for stage, color in [("worsened", "tab:red"), ("initial", "tab:gray"),
-                                 ("smoothed", "tab:blue")]:
+            for stage, color, style in [("worsened", "tab:red", "-"), ("smoothed", "tab:blue", "-"),
+                                        ("initial", "black", ":")]:
                 ax.step(centers, h[f"{stage}_{kind}"], where="mid", color=color, label=stage,
-                        linewidth=1.6 if stage == "smoothed" else 1.0)
+                        linestyle=style, linewidth=1.8 if stage == "smoothed" else 1.1)
             ax.set_yscale("symlog", linthresh=10)
             ax.set_xlim(0, h["bin_hi_deg"][-1] + width / 2)
             ax.set_xlabel(label)
             ax.set_ylabel("count")
-            ax.set_title(name.replace("_", " "), fontsize=9)
+            ax.set_title(name.replace("__", ", ").replace("_", " "), fontsize=9)
             ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)

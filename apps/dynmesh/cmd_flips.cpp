@@ -20,6 +20,7 @@ struct FlipArgs {
     CommonOptions common;
     std::string input, output, criterion = "angle";
     std::size_t max_flips_per_vertex = 100;
+    double feature_angle_deg = 180.0;
     bool check = false;
 };
 
@@ -35,7 +36,9 @@ void run_flip(const FlipArgs& a) {
     const double seconds_read = seconds_since(t0);
 
     progress.stage("flipping");
-    FlipOptions opt{.rule = rule, .max_flips_per_vertex = a.max_flips_per_vertex};
+    FlipOptions opt{.rule = rule,
+                    .max_flips_per_vertex = a.max_flips_per_vertex,
+                    .feature_angle_deg = a.feature_angle_deg};
     opt.progress = [&](std::size_t flips, std::size_t queued) {
         progress.detail(std::to_string(flips) + " flips, " + std::to_string(queued) + " queued");
     };
@@ -53,6 +56,8 @@ void run_flip(const FlipArgs& a) {
                           {"pushes", r.pushes},
                           {"degenerate_tests", r.degenerate},
                           {"not_improving_tests", r.not_improving},
+                          {"feature_angle_deg", a.feature_angle_deg},
+                          {"feature_locked_tests", r.feature_locked},
                           {"converged", r.converged},
                           {"seconds_flip", r.seconds},
                           {"seconds_read", seconds_read}};
@@ -61,9 +66,15 @@ void run_flip(const FlipArgs& a) {
         progress.stage("checking");
         const MeshCheckReport c = check_mesh(mesh, {.require_closed = true});
         const FlipDiagnostics d = flip_diagnostics(mesh, rule);
-        check_ok = c.ok() && d.flippable == 0;
+        // Idempotence: a second pass with the same options must find nothing to flip.
+        SurfaceMesh again = mesh;
+        const FlipReport second = flip_all(again, {.rule = rule,
+                                                   .max_flips_per_vertex = a.max_flips_per_vertex,
+                                                   .feature_angle_deg = a.feature_angle_deg});
+        check_ok = c.ok() && second.flips == 0;
         rep["check"] = {{"ok", check_ok},
                         {"problems", c.problems},
+                        {"second_pass_flips", second.flips},
                         {"flippable_edges", d.flippable},
                         {"illegal_edges", d.illegal},
                         {"nonempty_shrunk_balls", d.nonempty_balls}};
@@ -129,6 +140,11 @@ void register_flip(CLI::App& root, int& result) {
         ->capture_default_str();
     sub->add_option("--max-flips-per-vertex", args->max_flips_per_vertex,
                     "Diagnostic cap on flips (per vertex)")
+        ->capture_default_str();
+    sub->add_option("--feature-angle", args->feature_angle_deg,
+                    "Keep sharp edges: never flip an edge, or create one, whose 180 - dihedral "
+                    "exceeds this many degrees (180 = off; 60 keeps CAD creases)")
+        ->check(CLI::Range(0.0, 180.0))
         ->capture_default_str();
     sub->add_flag("--check", args->check, "Verify the result (manifold, nothing flippable)");
     add_common_options(*sub, args->common);

@@ -19,15 +19,29 @@ using Clock = std::chrono::steady_clock;
 /// edges may enter the queue; `on_flip(e)` observes each flip.
 class FlipQueue {
 public:
-    FlipQueue(SurfaceMesh& m, FlipRule rule, FlipReport& report)
-        : mesh_(m), rule_(rule), report_(report), in_queue_(m.edges_size(), 0) {}
+    FlipQueue(SurfaceMesh& m, FlipRule rule, double feature_angle_deg, FlipReport& report)
+        : mesh_(m),
+          rule_(rule),
+          min_dihedral_(feature_angle_deg >= 180.0 ? -1.0 : kPi - deg_to_rad(feature_angle_deg)),
+          report_(report),
+          in_queue_(m.edges_size(), 0) {}
 
     bool test(Edge e) {
         ++report_.checks;
         const FlipVerdict v = flip_verdict(mesh_, e, rule_);
         if (v == FlipVerdict::Degenerate) ++report_.degenerate;
         if (v == FlipVerdict::NotImproving) ++report_.not_improving;
-        return v == FlipVerdict::Flippable;
+        if (v != FlipVerdict::Flippable) return false;
+        if (min_dihedral_ >= 0.0) {
+            const EdgeQuad k = edge_quad(mesh_, e);
+            const Point3 &p = mesh_.position(k.p), &q = mesh_.position(k.q),
+                         &r = mesh_.position(k.r), &s = mesh_.position(k.s);
+            if (dihedral_angle(p, q, r, s) < min_dihedral_ || dihedral_angle(r, s, q, p) < min_dihedral_) {
+                ++report_.feature_locked;
+                return false;
+            }
+        }
+        return true;
     }
     /// Queues e unless it is queued already; it is tested once, when popped.
     void push(Edge e) {
@@ -66,6 +80,7 @@ public:
 private:
     SurfaceMesh& mesh_;
     FlipRule rule_;
+    double min_dihedral_;  ///< radians; negative when the feature guard is off
     FlipReport& report_;
     std::vector<char> in_queue_;
     std::deque<Edge> queue_;
@@ -77,7 +92,7 @@ FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
     DYNMESH_CHECK(!mesh.has_garbage(), "flip_all: the mesh has deleted elements; call garbage_collection() first");
     FlipReport report;
     const auto t0 = Clock::now();
-    FlipQueue q(mesh, options.rule, report);
+    FlipQueue q(mesh, options.rule, options.feature_angle_deg, report);
     for (Edge e : mesh.edges()) q.push(e);
     const std::size_t cap = std::max<std::size_t>(1, options.max_flips_per_vertex) *
                             std::max<std::size_t>(mesh.n_vertices(), 1);
@@ -145,7 +160,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
     const auto t0 = Clock::now();
     std::unordered_set<std::uint32_t> changed;
     std::size_t m = options.m0;
-    FlipQueue q(mesh, options.rule, out.flips);
+    FlipQueue q(mesh, options.rule, options.feature_angle_deg, out.flips);
     for (std::size_t round = 0; round < options.max_rounds; ++round, m *= 2) {
         ++out.rounds;
         out.final_m = m;

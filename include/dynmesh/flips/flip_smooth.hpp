@@ -20,6 +20,10 @@ struct FlipOptions {
     /// Diagnostic cap: stop after max_flips_per_vertex * n_vertices flips (converged = false).
     /// The theory bounds flips by O(n) for dense meshes.
     std::size_t max_flips_per_vertex = 100;
+    /// Sharp-feature guard: an edge whose 180 - dihedral exceeds this (degrees) is never
+    /// flipped, and no flip may create such an edge. 180 = off (the papers' algorithms).
+    /// 60 keeps the creases of CAD meshes.
+    double feature_angle_deg = 180.0;
     FlipProgress progress = {};
 };
 
@@ -29,6 +33,7 @@ struct FlipReport {
     std::size_t pushes = 0;          ///< queue insertions
     std::size_t degenerate = 0;      ///< tests refused for a degenerate triangle (never flipped)
     std::size_t not_improving = 0;   ///< tests refused by the anti-cycling guard
+    std::size_t feature_locked = 0;  ///< flippable edges refused by the sharp-feature guard
     bool converged = false;          ///< the queue emptied (no flippable edge is left)
     double seconds = 0;              ///< wall time of the flipping alone
 };
@@ -41,6 +46,7 @@ FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options = {});
 
 struct LocalFlipOptions {
     FlipRule rule = FlipRule::AngleDef3;
+    double feature_angle_deg = 180.0;  ///< as FlipOptions::feature_angle_deg
     std::size_t m0 = 3;           ///< first window radius in edge hops
     std::size_t max_rounds = 16;  ///< doubling rounds before giving up (converged = false)
 };
