@@ -1,12 +1,11 @@
 #include "cli_common.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <unistd.h>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/io/text_file.hpp"
 #include "dynmesh/mesh/check.hpp"
 
 namespace dynmesh::cli {
@@ -61,33 +60,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void write_text_atomic(const std::filesystem::path& path, const std::string& text) {
-    namespace fs = std::filesystem;
-    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir))
-        throw IoError(path.string() + ": cannot write: directory '" + dir.string() + "' does not exist");
-    const fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw IoError(path.string() + ": cannot write");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw IoError(path.string() + ": cannot write: " + ec.message());
-    }
-}
-
 void write_report(const CommonOptions& common, const nlohmann::json& report) {
     if (common.report_path.empty()) return;
-    write_text_atomic(common.report_path, report.dump(2) + "\n");
+    write_text_file(common.report_path, report.dump(2) + "\n");
 }
 
 SurfaceMesh load_mesh(const std::filesystem::path& path) { return read_mesh(path); }

@@ -53,9 +53,6 @@ private:
 /// Seconds since `t0`.
 double seconds_since(std::chrono::steady_clock::time_point t0);
 
-/// Writes text to `path` atomically (temporary file + rename).
-/// \throw IoError on any failure.
-void write_text_atomic(const std::filesystem::path& path, const std::string& text);
 /// Writes the report as pretty JSON if a path was given.
 void write_report(const CommonOptions& common, const nlohmann::json& report);
 

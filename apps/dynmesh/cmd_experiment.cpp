@@ -14,6 +14,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/experiment.hpp"
 #include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/io/text_file.hpp"
 #include "dynmesh/metrics/statistics.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
@@ -145,7 +146,7 @@ void write_histograms(const std::filesystem::path& path, const SmoothingExperime
                << "," << r.smoothed.normal_dev_hist->bins[i];
         os << "\n";
     }
-    write_text_atomic(path, os.str());
+    write_text_file(path, os.str());
 }
 
 std::string safe_name(std::string s) {

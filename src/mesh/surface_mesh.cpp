@@ -15,6 +15,15 @@ constexpr std::uint32_t kInvalid = Handle<VertexTag>::kInvalid;
 
 std::string vstr(std::uint32_t i) { return "vertex " + std::to_string(i); }
 
+/// True when no vertex repeats in the cycle.
+bool is_simple_cycle(const std::vector<Vertex>& cycle) {
+    std::vector<std::uint32_t> ids;
+    ids.reserve(cycle.size());
+    for (Vertex w : cycle) ids.push_back(w.idx());
+    std::sort(ids.begin(), ids.end());
+    return std::adjacent_find(ids.begin(), ids.end()) == ids.end();
+}
+
 struct PairHash {
     std::size_t operator()(std::uint64_t k) const noexcept {
         k ^= k >> 33;
@@ -118,12 +127,8 @@ SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
             directed.emplace(key(a, b), h.idx());
             hs[i] = h;
         }
-        for (int i = 0; i < 3; ++i) {
-            m.set_face(hs[i], f);
-            m.set_next(hs[i], hs[(i + 1) % 3]);
-            m.set_halfedge(m.from_vertex(hs[i]), hs[i]);
-        }
-        m.set_halfedge(f, hs[0]);
+        m.link_triangle(hs[0], hs[1], hs[2], f);
+        for (Halfedge h : hs) m.set_halfedge(m.from_vertex(h), h);
     }
     // Link boundary halfedges into loops; a vertex with two outgoing boundary halfedges is
     // pinched (non-manifold).
@@ -271,16 +276,8 @@ void SurfaceMesh::flip(Edge e) {
     // New faces: f0 = (q, r, s) = a0, h0 (r->s), b1; f1 = (p, s, r) = a1, h1 (s->r), b0.
     set_to(h0, s);
     set_to(h1, r);
-    set_next(a0, h0);
-    set_next(h0, b1);
-    set_next(b1, a0);
-    set_next(a1, h1);
-    set_next(h1, b0);
-    set_next(b0, a1);
-    set_face(b1, f0);
-    set_face(b0, f1);
-    set_halfedge(f0, h0);
-    set_halfedge(f1, h1);
+    link_triangle(h0, b1, a0, f0);
+    link_triangle(h1, b0, a1, f1);
     if (halfedge(p) == h0) set_halfedge(p, a1);
     if (halfedge(q) == h1) set_halfedge(q, a0);
 }
@@ -296,15 +293,9 @@ Vertex SurfaceMesh::split_face(Face f, const Point3& p) {
     const Halfedge ya = twin(xa), yb = twin(xb), yc = twin(xc);
     const Face f1 = new_face(), f2 = new_face();
     // f = (a,b,v): hab, xb, ya ; f1 = (b,c,v): hbc, xc, yb ; f2 = (c,a,v): hca, xa, yc
-    set_next(hab, xb); set_next(xb, ya); set_next(ya, hab);
-    set_next(hbc, xc); set_next(xc, yb); set_next(yb, hbc);
-    set_next(hca, xa); set_next(xa, yc); set_next(yc, hca);
-    for (Halfedge h : {hab, xb, ya}) set_face(h, f);
-    for (Halfedge h : {hbc, xc, yb}) set_face(h, f1);
-    for (Halfedge h : {hca, xa, yc}) set_face(h, f2);
-    set_halfedge(f, hab);
-    set_halfedge(f1, hbc);
-    set_halfedge(f2, hca);
+    link_triangle(hab, xb, ya, f);
+    link_triangle(hbc, xc, yb, f1);
+    link_triangle(hca, xa, yc, f2);
     set_halfedge(v, ya);
     return v;
 }
@@ -325,12 +316,8 @@ Vertex SurfaceMesh::split_edge(Edge e, const Point3& pos) {
         const Face f0 = face(h0), g0 = new_face();
         const Halfedge t = new_edge(m, r), tt = twin(t);  // t: m->r, tt: r->m
         // f0 = (p, m, r): h0, t, b0 ; g0 = (m, q, r): n0, a0, tt
-        set_next(h0, t); set_next(t, b0); set_next(b0, h0);
-        set_next(n0, a0); set_next(a0, tt); set_next(tt, n0);
-        set_face(t, f0);
-        for (Halfedge h : {n0, a0, tt}) set_face(h, g0);
-        set_halfedge(f0, h0);
-        set_halfedge(g0, n0);
+        link_triangle(h0, t, b0, f0);
+        link_triangle(n0, a0, tt, g0);
     } else {
         // boundary loop: ... -> h0 (p->m) -> n0 (m->q) -> old next(h0)
         const Halfedge after = next(h0);
@@ -344,12 +331,8 @@ Vertex SurfaceMesh::split_edge(Edge e, const Point3& pos) {
         const Face f1 = face(h1), g1 = new_face();
         const Halfedge u = new_edge(s, m), uu = twin(u);  // u: s->m, uu: m->s
         // f1 = (m, p, s): h1, a1, u ; g1 = (q, m, s): n1, uu, b1
-        set_next(h1, a1); set_next(a1, u); set_next(u, h1);
-        set_next(n1, uu); set_next(uu, b1); set_next(b1, n1);
-        set_face(u, f1);
-        for (Halfedge h : {n1, uu, b1}) set_face(h, g1);
-        set_halfedge(f1, h1);
-        set_halfedge(g1, n1);
+        link_triangle(h1, a1, u, f1);
+        link_triangle(n1, uu, b1, g1);
     } else {
         // boundary loop: old prev(h1) -> n1 (q->m) -> h1 (m->p)
         const Halfedge before = prev(h1);
@@ -437,13 +420,7 @@ void SurfaceMesh::remove_vertex(Vertex v, std::span<const std::array<std::uint32
     DYNMESH_CHECK(k >= 3, where + "valence below 3");
     std::vector<Vertex> link(k);
     for (std::size_t i = 0; i < k; ++i) link[i] = to_vertex(spokes[i]);
-    {
-        std::vector<std::uint32_t> ids;
-        for (Vertex w : link) ids.push_back(w.idx());
-        std::sort(ids.begin(), ids.end());
-        DYNMESH_CHECK(std::adjacent_find(ids.begin(), ids.end()) == ids.end(),
-                      where + "link is not a simple cycle");
-    }
+    DYNMESH_CHECK(is_simple_cycle(link), where + "link is not a simple cycle");
     DYNMESH_CHECK(tris.size() == k - 2, where + "expected " + std::to_string(k - 2) +
                                              " triangles for a link of " + std::to_string(k) +
                                              " vertices, got " + std::to_string(tris.size()));
@@ -502,12 +479,7 @@ void SurfaceMesh::remove_vertex(Vertex v, std::span<const std::array<std::uint32
                 hs[j] = it->second;
             }
         }
-        const Face f = free_faces[t];
-        for (int j = 0; j < 3; ++j) {
-            set_next(hs[j], hs[(j + 1) % 3]);
-            set_face(hs[j], f);
-        }
-        set_halfedge(f, hs[0]);
+        link_triangle(hs[0], hs[1], hs[2], free_faces[t]);
     }
 }
 
@@ -516,12 +488,7 @@ bool SurfaceMesh::remove_vertex(Vertex v) {
     const std::vector<Vertex> link = neighbors(v);
     const std::size_t k = link.size();
     if (k < 3) return false;
-    {
-        std::vector<std::uint32_t> ids;
-        for (Vertex w : link) ids.push_back(w.idx());
-        std::sort(ids.begin(), ids.end());
-        if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) return false;
-    }
+    if (!is_simple_cycle(link)) return false;
     // Plane: through v, normal = area-weighted normal of the star.
     Vec3 n{};
     for (std::size_t i = 0; i < k; ++i)

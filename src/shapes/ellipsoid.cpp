@@ -29,15 +29,15 @@ double robust_length(double a, double b, double c) {
     return m * std::sqrt(x * x + y * y + z * z);
 }
 
-double get_root(double r0, double z0, double z1, double g) {
-    const double n0 = r0 * z0;
-    double s0 = z1 - 1, s1 = g < 0 ? 0 : robust_length(n0, z1) - 1;
+/// Bisection on [s0, s1] for the root of the decreasing function g (Eberly's method), to
+/// full double precision.
+template <class G>
+double bisect_root(double s0, double s1, G&& g_of) {
     double s = 0;
     for (int i = 0; i < kMaxBisections; ++i) {
         s = 0.5 * (s0 + s1);
         if (s == s0 || s == s1) break;
-        const double ratio0 = n0 / (s + r0), ratio1 = z1 / (s + 1);
-        g = ratio0 * ratio0 + ratio1 * ratio1 - 1;
+        const double g = g_of(s);
         if (g > 0) {
             s0 = s;
         } else if (g < 0) {
@@ -49,24 +49,20 @@ double get_root(double r0, double z0, double z1, double g) {
     return s;
 }
 
+double get_root(double r0, double z0, double z1, double g) {
+    const double n0 = r0 * z0;
+    return bisect_root(z1 - 1, g < 0 ? 0 : robust_length(n0, z1) - 1, [&](double s) {
+        const double ratio0 = n0 / (s + r0), ratio1 = z1 / (s + 1);
+        return ratio0 * ratio0 + ratio1 * ratio1 - 1;
+    });
+}
+
 double get_root(double r0, double r1, double z0, double z1, double z2, double g) {
     const double n0 = r0 * z0, n1 = r1 * z1;
-    double s0 = z2 - 1, s1 = g < 0 ? 0 : robust_length(n0, n1, z2) - 1;
-    double s = 0;
-    for (int i = 0; i < kMaxBisections; ++i) {
-        s = 0.5 * (s0 + s1);
-        if (s == s0 || s == s1) break;
+    return bisect_root(z2 - 1, g < 0 ? 0 : robust_length(n0, n1, z2) - 1, [&](double s) {
         const double ratio0 = n0 / (s + r0), ratio1 = n1 / (s + r1), ratio2 = z2 / (s + 1);
-        g = ratio0 * ratio0 + ratio1 * ratio1 + ratio2 * ratio2 - 1;
-        if (g > 0) {
-            s0 = s;
-        } else if (g < 0) {
-            s1 = s;
-        } else {
-            break;
-        }
-    }
-    return s;
+        return ratio0 * ratio0 + ratio1 * ratio1 + ratio2 * ratio2 - 1;
+    });
 }
 
 double distance_point_ellipse(double e0, double e1, double y0, double y1, double& x0, double& x1) {

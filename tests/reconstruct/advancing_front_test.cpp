@@ -17,15 +17,6 @@
 namespace dynmesh {
 namespace {
 
-double signed_volume(const SurfaceMesh& m) {
-    double v = 0;
-    for (Face f : m.faces()) {
-        const auto c = m.face_vertices(f);
-        v += dot(m.position(c[0]), cross(m.position(c[1]), m.position(c[2])));
-    }
-    return v / 6;
-}
-
 void expect_vertices_are_samples(const AdvancingFrontResult& r, std::span<const Point3> samples) {
     ASSERT_EQ(r.report.vertex_sample.size(), r.mesh.n_vertices());
     EXPECT_TRUE(std::is_sorted(r.report.vertex_sample.begin(), r.report.vertex_sample.end()));
@@ -59,8 +50,8 @@ TEST(AdvancingFront, SphereSamples) {
         EXPECT_TRUE(check.ok()) << check.summary("  ");
         EXPECT_EQ(check.euler, 2);
         EXPECT_TRUE(r.report.closed);
-        EXPECT_GT(signed_volume(r.mesh), 0);
-        EXPECT_NEAR(signed_volume(r.mesh) / (4 * kPi / 3 * 8), 1, 0.02);
+        EXPECT_GT(test::signed_volume(r.mesh), 0);
+        EXPECT_NEAR(test::signed_volume(r.mesh) / (4 * kPi / 3 * 8), 1, 0.02);
         expect_vertices_are_samples(r, samples);
     }
 }
@@ -74,7 +65,7 @@ TEST(AdvancingFront, Kitten) {
     EXPECT_EQ(check.components, 1u);
     EXPECT_EQ(check.euler, 0);  // the kitten's tail makes a handle: genus 1
     EXPECT_EQ(r.report.unused_samples, 0u);
-    EXPECT_GT(signed_volume(r.mesh), 0);
+    EXPECT_GT(test::signed_volume(r.mesh), 0);
     expect_vertices_are_samples(r, samples);
 }
 

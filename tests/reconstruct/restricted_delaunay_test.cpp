@@ -11,18 +11,10 @@
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "test_support.hpp"
 
 namespace dynmesh {
 namespace {
-
-double signed_volume(const SurfaceMesh& m) {
-    double v = 0;
-    for (Face f : m.faces()) {
-        const auto c = m.face_vertices(f);
-        v += dot(m.position(c[0]), cross(m.position(c[1]), m.position(c[2])));
-    }
-    return v / 6;
-}
 
 /// Closed, with Euler characteristic `euler`, enclosing a positive volume, every face facing
 /// along the surface normal, and every vertex bit-identical to the sample the report names, in
@@ -33,7 +25,7 @@ void expect_valid_rdt(const RestrictedDelaunayResult& r, std::span<const Point3>
     EXPECT_TRUE(check.ok()) << ctx << "\n" << check.summary("  ");
     EXPECT_EQ(check.euler, euler) << ctx;
     EXPECT_EQ(check.components, 1u) << ctx;
-    EXPECT_GT(signed_volume(r.mesh), 0) << ctx;
+    EXPECT_GT(test::signed_volume(r.mesh), 0) << ctx;
     std::size_t inward = 0;
     for (Face f : r.mesh.faces()) {
         const auto c = r.mesh.face_vertices(f);
@@ -62,7 +54,7 @@ TEST(RestrictedDelaunay, UnitSphereGivesTheConvexHull) {
     // Every sample of a sphere is a hull vertex, and the hull of n points has 2n - 4 faces.
     EXPECT_EQ(r.report.unused_samples, 0u);
     EXPECT_EQ(r.mesh.n_faces(), 2 * samples.size() - 4);
-    EXPECT_NEAR(signed_volume(r.mesh), 4 * kPi / 3, 0.01);
+    EXPECT_NEAR(test::signed_volume(r.mesh), 4 * kPi / 3, 0.01);
     // Each face is a hull face: no sample lies outside its plane (checked on every 7th face).
     std::size_t k = 0;
     for (Face f : r.mesh.faces()) {
@@ -84,7 +76,7 @@ TEST(RestrictedDelaunay, TorusIsAClosedGenusOneSurface) {
         const auto r = restricted_delaunay_with_report(samples, torus);
         expect_valid_rdt(r, samples, torus, 0, "torus seed " + std::to_string(seed));
         const double volume = 2 * kPi * kPi * 5 * 9;
-        EXPECT_NEAR(signed_volume(r.mesh) / volume, 1, 0.02) << "seed " << seed;
+        EXPECT_NEAR(test::signed_volume(r.mesh) / volume, 1, 0.02) << "seed " << seed;
         EXPECT_EQ(r.report.unused_samples, 0u);
     }
 }
@@ -95,7 +87,7 @@ TEST(RestrictedDelaunay, OffCentreEllipsoid) {
     const auto r = restricted_delaunay_with_report(samples, e);
     expect_valid_rdt(r, samples, e, 2, "ellipsoid");
     // The volume about the origin is the enclosed volume for a closed surface.
-    EXPECT_NEAR(signed_volume(r.mesh) / (4 * kPi / 3 * 6), 1, 0.02);
+    EXPECT_NEAR(test::signed_volume(r.mesh) / (4 * kPi / 3 * 6), 1, 0.02);
 }
 
 TEST(RestrictedDelaunay, PlainCallAndSampleAndMeshAgree) {

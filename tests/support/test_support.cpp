@@ -58,6 +58,15 @@ SurfaceMesh icosphere(int level) {
     return SurfaceMesh::from_soup(s);
 }
 
+double signed_volume(const SurfaceMesh& m) {
+    double v = 0;
+    for (Face f : m.faces()) {
+        const auto c = m.face_vertices(f);
+        v += dot(m.position(c[0]), cross(m.position(c[1]), m.position(c[2])));
+    }
+    return v / 6;
+}
+
 SurfaceMesh grid(int n) {
     TriangleSoup s;
     for (int j = 0; j <= n; ++j)

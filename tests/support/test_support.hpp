@@ -16,6 +16,8 @@ std::filesystem::path scratch_dir(const std::string& name);
 SurfaceMesh octahedron();
 /// A closed icosphere of the given subdivision level (level 0: icosahedron), radius 1.
 SurfaceMesh icosphere(int level);
+/// Volume enclosed by a closed mesh (positive when outward oriented).
+double signed_volume(const SurfaceMesh& mesh);
 /// A planar square grid of n x n quads split into triangles (open, with boundary).
 SurfaceMesh grid(int n);
 

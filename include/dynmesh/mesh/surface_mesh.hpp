@@ -317,6 +317,14 @@ private:
         hprev_[n.idx()] = h.idx();
     }
     void set_face(Halfedge h, Face f) { hface_[h.idx()] = f.idx(); }
+    /// Makes a -> b -> c the halfedge cycle of face f (and a its halfedge).
+    void link_triangle(Halfedge a, Halfedge b, Halfedge c, Face f) {
+        set_next(a, b);
+        set_next(b, c);
+        set_next(c, a);
+        for (Halfedge h : {a, b, c}) set_face(h, f);
+        fhalfedge_[f.idx()] = a.idx();
+    }
     void set_to(Halfedge h, Vertex v) { hto_[h.idx()] = v.idx(); }
     void set_halfedge(Vertex v, Halfedge h) { vhalfedge_[v.idx()] = h.idx(); }
     void set_halfedge(Face f, Halfedge h) { fhalfedge_[f.idx()] = h.idx(); }
