@@ -114,6 +114,18 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
     return v;
 }
 
+FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule, double feature_angle_deg) {
+    const FlipVerdict v = flip_verdict(m, e, rule);
+    if (v != FlipVerdict::Flippable || feature_angle_deg >= 180.0) return v;
+    const double min_dihedral = kPi - deg_to_rad(feature_angle_deg);
+    const EdgeQuad k = edge_quad(m, e);
+    const Point3 &p = m.position(k.p), &q = m.position(k.q), &r = m.position(k.r),
+                 &s = m.position(k.s);
+    if (dihedral_angle(p, q, r, s) < min_dihedral || dihedral_angle(r, s, q, p) < min_dihedral)
+        return FlipVerdict::FeatureLocked;
+    return v;
+}
+
 bool is_illegal(const SurfaceMesh& m, Edge e) {
     if (m.is_deleted(e) || m.is_boundary(e)) return false;
     const EdgeQuad k = edge_quad(m, e);

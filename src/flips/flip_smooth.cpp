@@ -22,26 +22,17 @@ public:
     FlipQueue(SurfaceMesh& m, FlipRule rule, double feature_angle_deg, FlipReport& report)
         : mesh_(m),
           rule_(rule),
-          min_dihedral_(feature_angle_deg >= 180.0 ? -1.0 : kPi - deg_to_rad(feature_angle_deg)),
+          feature_angle_deg_(feature_angle_deg),
           report_(report),
           in_queue_(m.edges_size(), 0) {}
 
     bool test(Edge e) {
         ++report_.checks;
-        const FlipVerdict v = flip_verdict(mesh_, e, rule_);
+        const FlipVerdict v = flip_verdict(mesh_, e, rule_, feature_angle_deg_);
         if (v == FlipVerdict::Degenerate) ++report_.degenerate;
         if (v == FlipVerdict::NotImproving) ++report_.not_improving;
-        if (v != FlipVerdict::Flippable) return false;
-        if (min_dihedral_ >= 0.0) {
-            const EdgeQuad k = edge_quad(mesh_, e);
-            const Point3 &p = mesh_.position(k.p), &q = mesh_.position(k.q),
-                         &r = mesh_.position(k.r), &s = mesh_.position(k.s);
-            if (dihedral_angle(p, q, r, s) < min_dihedral_ || dihedral_angle(r, s, q, p) < min_dihedral_) {
-                ++report_.feature_locked;
-                return false;
-            }
-        }
-        return true;
+        if (v == FlipVerdict::FeatureLocked) ++report_.feature_locked;
+        return v == FlipVerdict::Flippable;
     }
     /// Queues e unless it is queued already; it is tested once, when popped.
     void push(Edge e) {
@@ -80,7 +71,7 @@ public:
 private:
     SurfaceMesh& mesh_;
     FlipRule rule_;
-    double min_dihedral_;  ///< radians; negative when the feature guard is off
+    double feature_angle_deg_;
     FlipReport& report_;
     std::vector<char> in_queue_;
     std::deque<Edge> queue_;

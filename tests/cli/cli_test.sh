@@ -117,6 +117,19 @@ check_cmd)
     grep -q "boundary" out.txt || fail "boundary not listed"
     run 1 "$bin" check "$data/meshes/defective/tetra_intersected_by_triangle.off" --self-intersections
     ;;
+local)
+    run 0 "$bin" worsen "$mesh" -o w.off --seed 2 --quiet
+    seq 0 40 > v.txt
+    run 0 "$bin" flip w.off -o l.off --vertices v.txt --check --report l.json --quiet
+    [ "$(json_get l.json "['local']['rounds']")" -ge 1 ] || fail "no local rounds"
+    [ "$(json_get l.json "['flips']")" -gt 0 ] || fail "no local flips"
+    [ "$(json_get l.json "['check']['flippable_at_given_vertices']")" -eq 0 ] || fail "flippable edges left at the vertices"
+    nv=$(sed -n 2p w.off | cut -d' ' -f1)
+    diff <(sed -n "3,$((nv + 2))p" w.off) <(sed -n "3,$((nv + 2))p" l.off) >/dev/null || fail "vertices changed"
+    echo 99999999 > bad.txt
+    run 1 "$bin" flip w.off -o l2.off --vertices bad.txt
+    grep -q "does not exist" err.txt || fail "bad vertex index not reported: $(cat err.txt)"
+    ;;
 report_atomic)
     run 1 "$bin" stats "$mesh" --report no_such_dir/r.json
     [ -e no_such_dir ] && fail "created a directory"

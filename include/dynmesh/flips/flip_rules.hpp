@@ -30,7 +30,8 @@ enum class FlipVerdict {
     DiagonalExists,  ///< rs is already an edge (Definition 3 (v))
     Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area
     RuleFails,       ///< the rule's geometric condition does not hold
-    NotImproving     ///< the rule holds but the guard against cycles does not (counted)
+    NotImproving,    ///< the rule holds but the guard against cycles does not (counted)
+    FeatureLocked    ///< the rule holds but the edge, or the one it would create, is sharp
 };
 
 /// The four corners of edge e: p->q is halfedge(e, 0), r opposite it, s opposite its twin.
@@ -60,8 +61,13 @@ inline constexpr double kAngleSlack = 1e-12;
 
 /// Full test of edge e under `rule`, including boundary, degeneracy and condition (v).
 [[nodiscard]] FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule);
-[[nodiscard]] inline bool is_flippable(const SurfaceMesh& mesh, Edge e, FlipRule rule) {
-    return flip_verdict(mesh, e, rule) == FlipVerdict::Flippable;
+/// As above, plus the sharp-feature guard: a flippable edge whose 180 - dihedral, or that of
+/// the edge the flip would create, exceeds feature_angle_deg is FeatureLocked (180 = off).
+[[nodiscard]] FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule,
+                                       double feature_angle_deg);
+[[nodiscard]] inline bool is_flippable(const SurfaceMesh& mesh, Edge e, FlipRule rule,
+                                       double feature_angle_deg = 180.0) {
+    return flip_verdict(mesh, e, rule, feature_angle_deg) == FlipVerdict::Flippable;
 }
 
 /// Definition 4: pq is illegal iff r lies inside the diametric ball of pqs and s inside that
