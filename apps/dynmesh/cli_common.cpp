@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -9,6 +10,27 @@
 #include "dynmesh/mesh/check.hpp"
 
 namespace dynmesh::cli {
+
+void check_report_path(const CommonOptions& common, const std::vector<std::string>& files) {
+    if (common.report_path.empty()) return;
+    for (const std::string& f : files)
+        if (!f.empty()) ensure_not_same_file(f, common.report_path);
+}
+
+const CLI::Validator& finite_number() {
+    static const CLI::Validator v(
+        [](std::string& s) {
+            double x = 0;
+            try {
+                x = std::stod(s);
+            } catch (const std::exception&) {
+                return std::string("not a number: " + s);
+            }
+            return std::isfinite(x) ? std::string() : std::string("not a finite number: " + s);
+        },
+        "FINITE");
+    return v;
+}
 
 void add_common_options(CLI::App& app, CommonOptions& common) {
     app.add_flag("-q,--quiet", common.quiet, "No progress output on stderr");
@@ -62,7 +84,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 void write_report(const CommonOptions& common, const nlohmann::json& report) {
     if (common.report_path.empty()) return;
-    write_text_file(common.report_path, report.dump(2) + "\n");
+    // Paths that are not UTF-8 must not make the report fail: replace invalid bytes.
+    write_text_file(common.report_path,
+                    report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 SurfaceMesh load_mesh(const std::filesystem::path& path) { return read_mesh(path); }

@@ -24,6 +24,10 @@ struct CommonOptions {
     std::string report_path;  ///< --report FILE (JSON); empty = none
 };
 void add_common_options(CLI::App& app, CommonOptions& common);
+/// Refuses a --report path that names one of the command's input or output files.
+void check_report_path(const CommonOptions& common, const std::vector<std::string>& files);
+/// A CLI11 validator that rejects NaN and infinities (CLI::Range lets NaN through).
+const CLI::Validator& finite_number();
 
 /// Prints "dynmesh <cmd>: <stage> ... <elapsed> s" to stderr every two seconds while a run
 /// is longer than two seconds, from a background thread; silent with --quiet and for short

@@ -243,6 +243,7 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::string& name, const 
 }
 
 void run_experiment(const ExperimentArgs& a) {
+    check_report_path(a.common, a.meshes);
     Progress progress("experiment", a.common.quiet);
     if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
     nlohmann::json cases = nlohmann::json::array();

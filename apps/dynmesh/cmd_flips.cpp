@@ -56,6 +56,7 @@ std::vector<Vertex> read_vertex_list(const std::string& path, const SurfaceMesh&
 void run_flip(const FlipArgs& a) {
     using Clock = std::chrono::steady_clock;
     ensure_not_same_file(a.input, a.output);
+    check_report_path(a.common, {a.input, a.output, a.vertices_file});
     const FlipRule rule = parse_flip_rule(a.criterion);
     Progress progress("flip", a.common.quiet);
     progress.stage("reading " + a.input);
@@ -78,7 +79,9 @@ void run_flip(const FlipArgs& a) {
     } else {
         const std::vector<Vertex> V = read_vertex_list(a.vertices_file, mesh);
         const LocalFlipReport lr =
-            flip_local(mesh, V, {.rule = rule, .feature_angle_deg = a.feature_angle_deg});
+            flip_local(mesh, V, {.rule = rule,
+                                 .feature_angle_deg = a.feature_angle_deg,
+                                 .max_flips_per_vertex = a.max_flips_per_vertex});
         r = lr.flips;
         local = {{"vertices_given", V.size()},
                  {"rounds", lr.rounds},
@@ -127,7 +130,8 @@ void run_flip(const FlipArgs& a) {
                         {a.vertices_file.empty() ? "second_pass_flips" : "flippable_at_given_vertices", second},
                         {"flippable_edges", d.flippable},
                         {"illegal_edges", d.illegal},
-                        {"nonempty_shrunk_balls", d.nonempty_balls}};
+                        {"nonempty_shrunk_balls", d.nonempty_balls},
+                        {"unchecked_balls", d.unchecked_balls}};
         if (!c.ok()) std::cerr << c.summary("dynmesh flip: check: ");
     }
     progress.stage("writing " + a.output);
@@ -137,9 +141,15 @@ void run_flip(const FlipArgs& a) {
     write_report(a.common, rep);
     std::cout << "flip: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces, "
               << r.flips << " flips (" << to_string(rule) << "), " << r.checks << " checks, "
-              << r.seconds << " s" << (r.converged ? "" : ", NOT converged (flip cap reached)")
+              << r.seconds << " s"
+              << (r.converged ? ""
+                  : a.vertices_file.empty()
+                      ? ", NOT converged (flip cap reached)"
+                      : ", NOT converged (window still growing after the last round, or flip cap)")
               << "\n  wrote " << a.output << "\n";
-    if (!check_ok) throw InternalError("--check failed: the flipped mesh violates an invariant");
+    if (!check_ok)
+        throw InternalError(r.converged ? "--check failed: the flipped mesh violates an invariant"
+                                        : "--check failed: flipping did not converge");
 }
 
 struct WorsenArgs {
@@ -150,6 +160,7 @@ struct WorsenArgs {
 
 void run_worsen(const WorsenArgs& a) {
     ensure_not_same_file(a.input, a.output);
+    check_report_path(a.common, {a.input, a.output});
     Progress progress("worsen", a.common.quiet);
     progress.stage("reading " + a.input);
     SurfaceMesh mesh = load_mesh(a.input);
@@ -190,11 +201,12 @@ void register_flip(CLI::App& root, int& result) {
         ->capture_default_str();
     sub->add_option("--max-flips-per-vertex", args->max_flips_per_vertex,
                     "Diagnostic cap on flips (per vertex)")
+        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 32))
         ->capture_default_str();
     sub->add_option("--feature-angle", args->feature_angle_deg,
                     "Keep sharp edges: never flip an edge, or create one, whose 180 - dihedral "
                     "exceeds this many degrees (180 = off; 60 keeps CAD creases)")
-        ->check(CLI::Range(0.0, 180.0))
+        ->check(finite_number() & CLI::Range(0.0, 180.0))
         ->capture_default_str();
     sub->add_option("--vertices", args->vertices_file,
                     "Flip only around these vertices (a file of 0-based vertex indices), with the "
@@ -213,11 +225,11 @@ void register_worsen(CLI::App& root, int& result) {
     sub->add_option("--rounds", args->options.rounds, "Passes over the edges")->capture_default_str();
     sub->add_option("--seed", args->options.seed, "Random seed")->capture_default_str();
     sub->add_option("--probability", args->options.probability, "Chance to flip each edge")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(finite_number() & CLI::Range(0.0, 1.0))
         ->capture_default_str();
     sub->add_option("--min-dihedral", args->options.min_dihedral_deg,
                     "Undo a flip that makes a dihedral angle smaller than this (degrees)")
-        ->check(CLI::Range(0.0, 180.0))
+        ->check(finite_number() & CLI::Range(0.0, 180.0))
         ->capture_default_str();
     add_common_options(*sub, args->common);
     sub->callback([args, &result] { result = guarded("worsen", [&] { run_worsen(*args); }); });

@@ -30,6 +30,7 @@ std::string fmt(const Summary& s) {
 }
 
 void run_stats(const StatsArgs& a) {
+    check_report_path(a.common, {a.mesh, a.against});
     Progress progress("stats", a.common.quiet);
     progress.stage("reading " + a.mesh);
     const SurfaceMesh mesh = load_mesh(a.mesh);
@@ -92,6 +93,7 @@ struct CheckArgs {
 };
 
 void run_check(const CheckArgs& a) {
+    check_report_path(a.common, {a.mesh});
     Progress progress("check", a.common.quiet);
     progress.stage("reading " + a.mesh);
     const SurfaceMesh mesh = load_mesh(a.mesh);

@@ -21,10 +21,13 @@ FlipDiagnostics flip_diagnostics(const SurfaceMesh& m, FlipRule rule, double shr
     double len = 0;
     for (Edge e : m.edges()) len += distance(m.position(m.vertex(e, 0)), m.position(m.vertex(e, 1)));
     const double cell = d.edges ? std::max(len / double(d.edges), 1e-300) : 1.0;
-    auto key = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
+    auto key = [cell](double x) {
+        const double k = std::floor(x / cell);  // clamped: huge coordinates must not overflow
+        return static_cast<std::int64_t>(std::clamp(k, -1e15, 1e15));
+    };
     auto hash = [](std::int64_t i, std::int64_t j, std::int64_t k) {
-        return static_cast<std::uint64_t>(i * 73856093LL) ^ static_cast<std::uint64_t>(j * 19349663LL) ^
-               static_cast<std::uint64_t>(k * 83492791LL);
+        return static_cast<std::uint64_t>(i) * 73856093ULL ^ static_cast<std::uint64_t>(j) * 19349663ULL ^
+               static_cast<std::uint64_t>(k) * 83492791ULL;
     };
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
     for (Vertex v : m.vertices()) {
@@ -36,11 +39,13 @@ FlipDiagnostics flip_diagnostics(const SurfaceMesh& m, FlipRule rule, double shr
         const auto vs = m.face_vertices(f);
         const Point3 &a = m.position(vs[0]), &b = m.position(vs[1]), &c = m.position(vs[2]);
         const Point3 cc = circumcenter(a, b, c);
-        if (!is_finite(cc)) continue;
         const double rad = shrink * distance(cc, a);
+        if (!is_finite(cc) || !(rad / cell <= 16.0)) {
+            ++d.unchecked_balls;
+            continue;
+        }
         const double r2 = rad * rad;
         const std::int64_t span = static_cast<std::int64_t>(std::ceil(rad / cell));
-        if (span > 64) continue;  // a huge ball on a degenerate triangle: skip (counted below)
         bool hit = false;
         for (std::int64_t i = key(cc.x) - span; i <= key(cc.x) + span && !hit; ++i)
             for (std::int64_t j = key(cc.y) - span; j <= key(cc.y) + span && !hit; ++j)

@@ -71,7 +71,8 @@ FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& 
     // Termination guard: the larger circumradius of the pair must drop.
     const double old_r = std::max(circumradius(p, q, r), circumradius(q, p, s));
     const double new_r = std::max(circumradius(p, s, r), circumradius(q, r, s));
-    return new_r < old_r ? FlipVerdict::Flippable : FlipVerdict::NotImproving;
+    // Relative slack, so that rounding of tied radii cannot make pq -> rs -> pq cycle.
+    return new_r < old_r * (1.0 - 1e-12) ? FlipVerdict::Flippable : FlipVerdict::NotImproving;
 }
 
 bool planar_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {

@@ -77,6 +77,13 @@ private:
     std::deque<Edge> queue_;
 };
 
+/// per_vertex * n, saturating instead of wrapping.
+std::size_t flip_cap(std::size_t per_vertex, std::size_t n) {
+    per_vertex = std::max<std::size_t>(per_vertex, 1);
+    n = std::max<std::size_t>(n, 1);
+    return per_vertex > SIZE_MAX / n ? SIZE_MAX : per_vertex * n;
+}
+
 }  // namespace
 
 FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
@@ -85,8 +92,7 @@ FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
     const auto t0 = Clock::now();
     FlipQueue q(mesh, options.rule, options.feature_angle_deg, report);
     for (Edge e : mesh.edges()) q.push(e);
-    const std::size_t cap = std::max<std::size_t>(1, options.max_flips_per_vertex) *
-                            std::max<std::size_t>(mesh.n_vertices(), 1);
+    const std::size_t cap = flip_cap(options.max_flips_per_vertex, mesh.n_vertices());
     q.run(cap, options.progress, [](Edge) { return true; }, [](Edge) {});
     report.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return report;
@@ -163,7 +169,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
                 const Edge e = SurfaceMesh::edge(h);
                 if (vi < mesh.to_vertex(h).idx() && allowed(e)) q.push(e);
             }
-        q.run(SIZE_MAX, {}, allowed, [&](Edge e) {
+        q.run(flip_cap(options.max_flips_per_vertex, dist.size()), {}, allowed, [&](Edge e) {
             changed.insert(mesh.face(SurfaceMesh::halfedge(e, 0)).idx());
             changed.insert(mesh.face(SurfaceMesh::halfedge(e, 1)).idx());
         });
@@ -201,6 +207,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
             }
             if (!ok) break;
         }
+        if (!out.flips.converged) break;  // the flip cap was reached
         if (ok) {
             out.converged = true;
             break;

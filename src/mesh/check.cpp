@@ -53,6 +53,7 @@ MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
             }
             if (m.face(h) != m.face(n)) { problem(hs + ": next(h) lies in another face"); structure_ok = false; }
             if (m.is_boundary(h)) ++r.boundary_edges;  // counts boundary halfedges = edges
+
             if (m.to_vertex(h) == m.from_vertex(h)) { problem(hs + ": a loop edge"); structure_ok = false; }
         }
     }
@@ -72,6 +73,16 @@ MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
         r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
                   static_cast<long long>(r.faces);
         return r;
+    }
+
+    // Edges: each in at least one triangle; two triangles on an edge differ in their apex.
+    for (Edge e : m.edges()) {
+        const Halfedge h = SurfaceMesh::halfedge(e, 0), o = SurfaceMesh::halfedge(e, 1);
+        const std::string es = "edge " + std::to_string(e.idx());
+        if (m.is_boundary(h) && m.is_boundary(o))
+            problem(es + ": no triangle uses it (dangling edge)");
+        else if (!m.is_boundary(h) && !m.is_boundary(o) && m.opposite_vertex(h) == m.opposite_vertex(o))
+            problem(es + ": both triangles have the same third vertex (a folded pair)");
     }
 
     // Vertices: manifold fans, outgoing boundary convention.

@@ -84,7 +84,7 @@ void SurfaceMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
 SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
     SurfaceMesh m;
     const std::size_t nv = soup.points.size();
-    if (nv >= kInvalid || soup.triangles.size() >= kInvalid / 4)
+    if (nv >= kInvalid || soup.triangles.size() >= kInvalid / 6)
         throw InvalidInput("from_soup: too many elements for 32-bit indices");
     m.reserve(nv, soup.triangles.size() * 3 / 2 + 16, soup.triangles.size());
     for (std::size_t i = 0; i < nv; ++i) {
@@ -360,6 +360,9 @@ bool SurfaceMesh::is_collapse_ok(Halfedge h) const {
     if (vl.is_valid() && valence(vl) <= 3 && !is_boundary(vl)) return false;
     if (vr.is_valid() && valence(vr) <= 3 && !is_boundary(vr)) return false;
     if (vl.is_valid() && vl == vr) return false;
+    // A triangle whose two other edges are both boundary would leave a dangling edge.
+    for (Halfedge x : {h, o})
+        if (!is_boundary(x) && is_boundary(twin(next(x))) && is_boundary(twin(prev(x)))) return false;
     // Link condition: the common neighbours of v0 and v1 are exactly vl and vr.
     for (Halfedge g : outgoing_halfedges(v0)) {
         const Vertex w = to_vertex(g);
@@ -421,6 +424,10 @@ void SurfaceMesh::remove_vertex(Vertex v, std::span<const std::array<std::uint32
     std::vector<Vertex> link(k);
     for (std::size_t i = 0; i < k; ++i) link[i] = to_vertex(spokes[i]);
     DYNMESH_CHECK(is_simple_cycle(link), where + "link is not a simple cycle");
+    // A valence-3 vertex whose link triangle is already a face (a tetrahedron) cannot go:
+    // the two copies of that triangle would enclose nothing.
+    DYNMESH_CHECK(k > 3 || opposite_vertex(twin(next(spokes[0]))) != link[2],
+                  where + "the link triangle is already a face (tetrahedron)");
     DYNMESH_CHECK(tris.size() == k - 2, where + "expected " + std::to_string(k - 2) +
                                              " triangles for a link of " + std::to_string(k) +
                                              " vertices, got " + std::to_string(tris.size()));
@@ -489,6 +496,7 @@ bool SurfaceMesh::remove_vertex(Vertex v) {
     const std::size_t k = link.size();
     if (k < 3) return false;
     if (!is_simple_cycle(link)) return false;
+    if (k == 3 && opposite_vertex(find_halfedge(link[1], link[0])) == link[2]) return false;
     // Plane: through v, normal = area-weighted normal of the star.
     Vec3 n{};
     for (std::size_t i = 0; i < k; ++i)

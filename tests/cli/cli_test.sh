@@ -84,7 +84,12 @@ same_file)
     before=$(sha256sum in.off)
     run 1 "$bin" flip in.off -o in.off
     run 1 "$bin" worsen in.off -o ./in.off
+    run 1 "$bin" flip in.off -o out.off --report in.off
+    run 1 "$bin" stats in.off --report in.off
     [ "$(sha256sum in.off)" = "$before" ] || fail "input was modified"
+    "$bin" worsen in.off -o w.off --min-dihedral nan >/dev/null 2>&1 && fail "NaN option accepted"
+    "$bin" flip in.off -o w.off --feature-angle inf >/dev/null 2>&1 && fail "infinite option accepted"
+    true
     ;;
 sample_stats)
     run 0 "$bin" sample --surface sphere --samples 3000 --seed 2 -o sph.off --quiet

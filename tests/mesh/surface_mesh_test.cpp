@@ -120,6 +120,29 @@ TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
     }
 }
 
+TEST(SurfaceMesh, RefusesOperationsThatDegenerate) {
+    // Removing a vertex of a tetrahedron would leave two copies of one triangle.
+    TriangleSoup t;
+    t.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    t.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    SurfaceMesh tet = SurfaceMesh::from_soup(t);
+    EXPECT_FALSE(tet.remove_vertex(Vertex(0)));
+    std::vector<std::array<std::uint32_t, 3>> one = {{0, 1, 2}};
+    EXPECT_THROW(tet.remove_vertex(Vertex(0), one), InvalidInput);
+    EXPECT_TRUE(check_mesh(tet, {.require_closed = true}).ok());
+    // Collapsing an edge of a lone triangle would leave a dangling edge.
+    TriangleSoup s;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    s.triangles = {{0, 1, 2}};
+    SurfaceMesh tri = SurfaceMesh::from_soup(s);
+    for (Edge e : tri.edges())
+        for (int i = 0; i < 2; ++i) EXPECT_FALSE(tri.is_collapse_ok(SurfaceMesh::halfedge(e, i)));
+    // check_mesh flags a folded pair (two triangles on the same three vertices).
+    s.triangles = {{0, 1, 2}, {0, 2, 1}};
+    const auto r = check_mesh(SurfaceMesh::from_soup(s));
+    EXPECT_FALSE(r.ok());
+}
+
 TEST(SurfaceMesh, SplitEdgeOnBoundary) {
     SurfaceMesh g = test::grid(2);
     for (Edge e : g.edges())

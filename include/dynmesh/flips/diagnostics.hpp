@@ -14,6 +14,9 @@ struct FlipDiagnostics {
     std::size_t illegal = 0;             ///< Definition 4 illegal edges
     std::size_t faces = 0;
     std::size_t nonempty_balls = 0;      ///< faces whose shrunken diametric ball holds a vertex
+    /// Faces whose ball spans too many grid cells to be searched (huge circumradius next to
+    /// small edges, typically a near-degenerate triangle): not tested, counted here.
+    std::size_t unchecked_balls = 0;
     double ball_shrink = 0.95;
 };
 

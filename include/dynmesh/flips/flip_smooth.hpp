@@ -49,6 +49,8 @@ struct LocalFlipOptions {
     double feature_angle_deg = 180.0;  ///< as FlipOptions::feature_angle_deg
     std::size_t m0 = 3;           ///< first window radius in edge hops
     std::size_t max_rounds = 16;  ///< doubling rounds before giving up (converged = false)
+    /// Diagnostic cap per round: max_flips_per_vertex * (vertices in the window).
+    std::size_t max_flips_per_vertex = 100;
 };
 
 struct LocalFlipReport {

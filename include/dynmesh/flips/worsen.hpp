@@ -25,7 +25,8 @@ struct WorsenReport {
 /// Each round takes a snapshot of the edges as sorted vertex pairs; for each pair that is
 /// still an edge, with the given probability, flips it unless the flip is topologically
 /// invalid or leaves a dihedral angle below the floor at the new edge or the four quad edges.
-/// Deterministic for a seed. \pre no garbage.
+/// Deterministic for a seed. An undone flip restores the edge pq and both triangles, but
+/// the two faces may swap indices and start at another corner. \pre no garbage.
 WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& options = {});
 
 }  // namespace dynmesh
