@@ -11,6 +11,7 @@
 
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/reconstruct/meshing_report.hpp"
 
 namespace dynmesh {
 
@@ -25,17 +26,10 @@ struct AdvancingFrontOptions {
     bool require_closed = true;
 };
 
-struct AdvancingFrontReport {
-    std::size_t samples = 0;         ///< input size
-    std::size_t vertices_used = 0;   ///< samples that are mesh vertices
-    std::size_t unused_samples = 0;  ///< samples in no output triangle
-    std::size_t facets = 0;          ///< triangles of the result
+struct AdvancingFrontReport : SampleMeshingReport {
     std::size_t boundary_edges = 0;  ///< 0 for a closed result
     bool closed = false;
     bool flipped = false;  ///< all triangles reversed to make the volume positive
-    /// Input index of each mesh vertex (strictly increasing), as for restricted_delaunay().
-    std::vector<std::uint32_t> vertex_sample;
-    double seconds = 0;  ///< wall-clock time of the whole call
 };
 
 struct AdvancingFrontResult {

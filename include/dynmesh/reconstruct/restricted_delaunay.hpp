@@ -13,6 +13,7 @@
 
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/reconstruct/meshing_report.hpp"
 #include "dynmesh/shapes/surface.hpp"
 
 namespace dynmesh {
@@ -25,16 +26,8 @@ struct RestrictedDelaunayOptions {
     std::size_t max_evaluations_per_edge = 256;
 };
 
-struct RestrictedDelaunayReport {
-    std::size_t samples = 0;         ///< input size
-    std::size_t vertices_used = 0;   ///< samples that are mesh vertices
-    std::size_t unused_samples = 0;  ///< samples in no restricted facet
-    std::size_t facets = 0;          ///< triangles of the result
+struct RestrictedDelaunayReport : SampleMeshingReport {
     std::size_t delaunay_cells = 0;  ///< finite tetrahedra of the 3D Delaunay triangulation
-    /// Input index of each mesh vertex: vertex v is samples[vertex_sample[v.idx()]]. Strictly
-    /// increasing, since vertices keep the order of the samples.
-    std::vector<std::uint32_t> vertex_sample;
-    double seconds = 0;  ///< wall-clock time of the whole call
 };
 
 struct RestrictedDelaunayResult {
