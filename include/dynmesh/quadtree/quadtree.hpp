@@ -1,0 +1,196 @@
+#pragma once
+/// \file DynQuadtree<D>: a balanced 2^D-tree over a dynamic point set (D = 2, 3), after Acar &
+/// Hudson, "Dynamic Mesh Refinement with Quad Trees and Off-Centers" (CMU-CS-07-121), as
+/// specified in shared/specs/dynamic-quadtree.md §1–§3 ("paper mode": isolation radius k = 1).
+///
+/// The tree is a function of (domain, point set) alone (spec §1.4): its internal cells are the
+/// least set I(P) closed under
+///   (C) crowded(x) => x in I, where crowded(x) <=> |P ∩ x| >= 1 and |P ∩ N_1[x]| >= 2
+///       (N_1[x] = the 3^D block of equal-size cells centred on x, clipped to the domain);
+///   (A) x in I => parent(x) in I;
+///   (B) x in I => every cell of size 2|x| touching x (closures meet) is in I.
+/// Leaves are the children of I-cells not in I (or the root alone). Cells are half-open dyadic
+/// cubes on an integer grid of 2^52 units per axis; inputs are snapped to multiples of 8 units
+/// (input quantum W·2^-49) and must lie in the middle third of the domain box.
+///
+/// Updates are incremental (spec §3.2, support counting): an insert or erase recomputes the
+/// crowding flags of the 3^D cells around the point per level, then settles membership in I
+/// smallest level first with a bucket queue, and finally splits / merges only the cells whose
+/// membership changed. The result equals build() on the current point set, cell for cell.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+#include <vector>
+
+#include "dynmesh/geometry/vec.hpp"
+
+namespace dynmesh {
+
+/// The point type of dimension D: Vec2 for D = 2, Vec3 for D = 3.
+template <int D>
+using PointD = std::conditional_t<D == 2, Vec2, Vec3>;
+
+/// The fixed domain box Ω = [origin, origin + width]^D. It never follows the points (spec §1.1);
+/// changing it means building a new tree.
+template <int D>
+struct QuadtreeOptions {
+    PointD<D> origin{};  // lower corner of Ω
+    double width = 1.0;  // side length W of Ω, finite and > 0
+};
+
+enum class InsertResult {
+    Inserted,
+    Duplicate,      // a point with the same snapped grid coordinates is already stored
+    OutsideDomain,  // not in the middle third [o + W/3, o + 2W/3]^D of the domain
+    NotFinite,      // a NaN or infinite coordinate
+};
+
+enum class EraseResult {
+    Erased,
+    NotFound,  // no stored point has these snapped grid coordinates (or the point is invalid)
+};
+
+/// A dyadic cell: ∏_i [index_i·2^level, (index_i+1)·2^level) in grid units. The root is
+/// (level 52, index 0). Ordered by (level, index) for canonical output.
+template <int D>
+struct CellId {
+    int level = 0;
+    std::array<std::uint64_t, D> index{};
+    auto operator<=>(const CellId&) const = default;
+};
+
+/// What the last insert/erase changed (the change log of spec §3.2 step 4).
+template <int D>
+struct QuadtreeUpdateReport {
+    std::vector<CellId<D>> split;      // leaves that became internal, largest first
+    std::vector<CellId<D>> merged;     // internal cells that became leaves, smallest first
+    std::size_t crowding_changes = 0;  // cells whose crowded flag flipped
+    std::size_t support_updates = 0;   // ±1 support messages sent during propagation
+};
+
+template <int D>
+class DynQuadtree {
+    static_assert(D == 2 || D == 3, "DynQuadtree supports D = 2 and D = 3");
+
+public:
+    using Point = PointD<D>;
+    using GridPoint = std::array<std::uint64_t, D>;
+    static constexpr int kLevels = 52;    // K: the grid has 2^K units per axis
+    static constexpr int kGuardBits = 3;  // G: inputs are snapped to multiples of 2^G units
+
+    /// An empty tree (the root alone) over the given domain.
+    /// \throw InvalidInput if the origin is not finite or the width is not finite and > 0.
+    explicit DynQuadtree(const QuadtreeOptions<D>& options = {});
+
+    /// From-scratch build (spec §2.3): computes I(P) directly, bottom-up by level, then closes
+    /// it under rules A and B. Equals inserting the points one by one in any order.
+    /// \throw InvalidInput naming the point (index and coordinates) if one is not finite, lies
+    ///        outside the middle third, or duplicates an earlier one after snapping.
+    [[nodiscard]] static DynQuadtree build(std::span<const Point> points,
+                                           const QuadtreeOptions<D>& options = {});
+
+    /// Inserts p. On any result other than Inserted nothing changes (last_update() included).
+    [[nodiscard]] InsertResult insert(const Point& p);
+    /// Erases the stored point with p's snapped grid coordinates. On NotFound nothing changes.
+    [[nodiscard]] EraseResult erase(const Point& p);
+    /// True when a point with p's snapped grid coordinates is stored.
+    [[nodiscard]] bool contains(const Point& p) const;
+
+    [[nodiscard]] std::size_t size() const { return size_; }
+    [[nodiscard]] std::size_t leaf_count() const { return nodes_.size() - state_.size(); }
+    [[nodiscard]] std::size_t internal_count() const { return state_.size(); }
+    [[nodiscard]] const QuadtreeOptions<D>& options() const { return options_; }
+    /// The change log of the last successful insert or erase (empty after construction).
+    [[nodiscard]] const QuadtreeUpdateReport<D>& last_update() const { return last_update_; }
+
+    /// True when p is finite and lies in the middle third of the domain.
+    [[nodiscard]] bool is_admissible(const Point& p) const;
+    /// Grid coordinates of p (multiples of 2^kGuardBits in [0, 2^kLevels)).
+    /// \throw InvalidInput unless is_admissible(p).
+    [[nodiscard]] GridPoint grid_point(const Point& p) const;
+
+    /// Every leaf, sorted by (level, index).
+    [[nodiscard]] std::vector<CellId<D>> leaves() const;
+    /// Deterministic text form of the tree: a header line, then one line per leaf sorted by
+    /// (level, index) with the grid coordinates of its point if it holds one. Equal point sets
+    /// (up to snapping) over equal domains give byte-identical dumps, whatever the history.
+    [[nodiscard]] std::string canonical_dump() const;
+    /// Every violated invariant, one message each; empty when the tree is valid. Checks the tree
+    /// structure and counts, every point in exactly one leaf, no crowded and no unbalanced leaf
+    /// in the sense of spec §1.3 (leaf neighbours, size ratio < 4), and the local certificate of
+    /// spec §3.4 (closure under C, A, B; stored crowding flags and supports equal their
+    /// recomputation, every internal cell has positive support). O(cells).
+    [[nodiscard]] std::vector<std::string> check_invariants() const;
+
+private:
+    struct Key {
+        std::array<std::uint64_t, D> a{};
+        int level = 0;
+        bool operator==(const Key&) const = default;
+    };
+    struct KeyHash {
+        static constexpr std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser
+            x += 0x9e3779b97f4a7c15ULL;
+            x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+            x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+            return x ^ (x >> 31);
+        }
+        std::size_t operator()(const Key& k) const noexcept {
+            std::uint64_t h = mix(static_cast<std::uint64_t>(k.level));
+            for (std::uint64_t v : k.a) h = mix(h ^ v);
+            return static_cast<std::size_t>(h);
+        }
+    };
+    struct Entry {
+        GridPoint g{};
+        Point p{};
+    };
+    /// A cell of the tree (internal or leaf). Leaves own their points (≤ 1 when settled).
+    struct Node {
+        std::uint64_t count = 0;  // |P ∩ cell|
+        bool is_leaf = true;
+        std::vector<Entry> points;  // leaves only
+    };
+    /// Support-counting state of spec §3.2; an entry exists iff support > 0 or in_i.
+    struct CellState {
+        int support = 0;  // [crowded] + #{z in I : |z| = |x|/2, z touches x}
+        bool crowded = false;
+        bool in_i = false;
+    };
+    using NodeMap = std::unordered_map<Key, Node, KeyHash>;
+    using StateMap = std::unordered_map<Key, CellState, KeyHash>;
+
+    [[nodiscard]] static Key root_key();
+    [[nodiscard]] static Key cell_of(const GridPoint& g, int level);
+    [[nodiscard]] static bool offset_cell(const Key& c, const std::array<int, D>& o, Key& out);
+    [[nodiscard]] static std::vector<Key> up_neighbours(const Key& x);
+    [[nodiscard]] InsertResult snap(const Point& p, GridPoint& g) const;
+    /// The leaf containing g, and the root-to-leaf path (leaf last) if path != nullptr.
+    [[nodiscard]] Node& find_leaf(const GridPoint& g, std::vector<Node*>* path);
+    [[nodiscard]] const Node& find_leaf(const GridPoint& g) const;
+    /// |P ∩ x| for any cell x (0 outside the domain), from stored counts or a leaf's points.
+    [[nodiscard]] std::uint64_t count_in(const Key& x) const;
+    /// crowded_1(x) from current counts.
+    [[nodiscard]] bool is_crowded(const Key& x) const;
+    /// Spec §3.2 steps 2–4 after p's counts and leaf entry were updated; sign = +1 or -1;
+    /// path = the root-to-leaf path of p (already updated counts).
+    void propagate(const GridPoint& g, int sign, const std::vector<Node*>& path);
+    void split(const Key& x);
+    void merge(const Key& x);
+
+    QuadtreeOptions<D> options_;
+    std::size_t size_ = 0;
+    NodeMap nodes_;   // I(P) ∪ leaves
+    StateMap state_;  // I(P) when settled
+    QuadtreeUpdateReport<D> last_update_;
+};
+
+extern template class DynQuadtree<2>;
+extern template class DynQuadtree<3>;
+
+}  // namespace dynmesh

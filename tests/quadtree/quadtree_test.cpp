@@ -1,0 +1,535 @@
+#include "dynmesh/quadtree/quadtree.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
+
+namespace dynmesh {
+namespace {
+
+template <int D>
+using Tree = DynQuadtree<D>;
+
+std::string joined(const std::vector<std::string>& v) {
+    std::string s;
+    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += v[i] + "\n";
+    return s;
+}
+
+template <int D>
+PointD<D> make_point(const std::array<double, 3>& c) {
+    PointD<D> p;
+    for (int i = 0; i < D; ++i) p[static_cast<std::size_t>(i)] = c[static_cast<std::size_t>(i)];
+    return p;
+}
+
+/// A pool of distinct (after snapping) points in the middle third: uniform points mixed with
+/// clusters of spacing 2^-3 .. 2^-max_exp and (with probability tiny) ~1e-9 of the domain.
+/// Deep clusters make big trees (most of all in 3D), so the 3D suites use shallower ones.
+template <int D>
+std::vector<PointD<D>> point_pool(Rng& rng, std::size_t m, int max_exp = 30, double tiny = 0.1) {
+    const Tree<D> probe;
+    std::vector<PointD<D>> pool;
+    std::set<typename Tree<D>::GridPoint> seen;
+    PointD<D> centre{};
+    while (pool.size() < m) {
+        std::array<double, 3> c{};
+        const double kind = rng.uniform();
+        if (kind < 0.4 || pool.empty()) {
+            for (auto& v : c) v = rng.uniform(1.0 / 3.0, 2.0 / 3.0);
+        } else {
+            if (rng.coin(0.3)) centre = pool[rng.below(pool.size())];
+            const double scale =
+                kind < 1.0 - tiny
+                    ? std::ldexp(1.0, -static_cast<int>(
+                                          3 + rng.below(static_cast<std::uint64_t>(max_exp - 2))))
+                    : 1e-9;
+            for (int i = 0; i < D; ++i) {
+                const auto ui = static_cast<std::size_t>(i);
+                c[ui] = std::clamp(centre[ui] + scale * rng.uniform(-2.0, 2.0), 0.34, 0.66);
+            }
+        }
+        const PointD<D> p = make_point<D>(c);
+        if (seen.insert(probe.grid_point(p)).second) {
+            pool.push_back(p);
+            centre = p;
+        }
+    }
+    return pool;
+}
+
+/// Independent oracle: I(P) by brute force straight from the definition (spec §1.4, k = 1).
+template <int D>
+std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoint>& pts) {
+    constexpr int K = Tree<D>::kLevels;
+    std::set<CellId<D>> in_i;
+    for (int j = 0; j <= K; ++j) {
+        for (const auto& p : pts) {
+            std::size_t near = 0;
+            for (const auto& q : pts) {
+                bool ok = true;
+                for (int i = 0; i < D; ++i) {
+                    const auto a = static_cast<std::int64_t>(p[i] >> j);
+                    const auto b = static_cast<std::int64_t>(q[i] >> j);
+                    ok = ok && std::abs(a - b) <= 1;
+                }
+                near += ok ? 1 : 0;
+            }
+            if (near >= 2) {
+                CellId<D> x{j, {}};
+                for (int i = 0; i < D; ++i) x.index[i] = p[i] >> j;
+                in_i.insert(x);
+            }
+        }
+    }
+    std::vector<CellId<D>> work(in_i.begin(), in_i.end());
+    while (!work.empty()) {
+        const CellId<D> x = work.back();
+        work.pop_back();
+        if (x.level == K) continue;
+        const std::int64_t n = std::int64_t{1} << (K - x.level - 1);
+        // every cell of the next level whose closure meets x's closure
+        std::array<int, D> o;
+        o.fill(-1);
+        while (true) {
+            CellId<D> y{x.level + 1, {}};
+            bool ok = true;
+            for (int i = 0; i < D && ok; ++i) {
+                const auto a = static_cast<std::int64_t>(x.index[i]);
+                const std::int64_t b = (a >> 1) + o[i];
+                ok = b >= 0 && b < n && 2 * b <= a + 1 && a <= 2 * b + 2;
+                y.index[i] = static_cast<std::uint64_t>(b);
+            }
+            if (ok && in_i.insert(y).second) work.push_back(y);
+            int i = 0;
+            while (i < D && o[i] == 1) o[i++] = -1;
+            if (i == D) break;
+            ++o[i];
+        }
+    }
+    std::vector<CellId<D>> leaves;
+    if (in_i.empty()) leaves.push_back({K, {}});
+    for (const auto& x : in_i)
+        for (int mask = 0; mask < (1 << D); ++mask) {
+            CellId<D> ch{x.level - 1, {}};
+            for (int i = 0; i < D; ++i) ch.index[i] = 2 * x.index[i] + ((mask >> i) & 1);
+            if (!in_i.contains(ch)) leaves.push_back(ch);
+        }
+    std::sort(leaves.begin(), leaves.end());
+    return leaves;
+}
+
+/// The paper's oracle (spec §2.1, Figure 2, T3): QuadTreeRefine run literally, with FIFO work
+/// buckets, rounds (split all cells of one size, then test the new children), crowding tested
+/// against the current leaf neighbours (§1.3) and balance splits of neighbours >= 4x larger.
+template <int D>
+class PaperQtr {
+public:
+    using GP = typename Tree<D>::GridPoint;
+    static constexpr int K = Tree<D>::kLevels;
+
+    explicit PaperQtr(const std::vector<GP>& pts) {
+        const CellId<D> root{K, {}};
+        leaves_[root] = pts;
+        std::vector<std::deque<CellId<D>>> w(K + 1);
+        if (pts.size() >= 2) w[K].push_back(root);
+        int l = K;
+        auto any = [&] {
+            return std::any_of(w.begin(), w.end(), [](const auto& q) { return !q.empty(); });
+        };
+        while (any()) {
+            while (l >= 0 && w[l].empty()) --l;
+            if (l < 0)  // guard: the lemma says this never happens
+                for (l = 0; w[l].empty(); ++l) {
+                }
+            std::vector<CellId<D>> newcells;
+            while (!w[l].empty()) {
+                const CellId<D> c = w[l].front();
+                w[l].pop_front();
+                const auto it = leaves_.find(c);
+                if (it == leaves_.end()) continue;  // no longer a leaf
+                const std::vector<GP> pts_c = it->second;
+                leaves_.erase(it);
+                internal_.insert(c);
+                for (int mask = 0; mask < (1 << D); ++mask) {
+                    const CellId<D> ch = child(c, mask);
+                    auto& v = leaves_[ch];
+                    for (const GP& g : pts_c) {
+                        bool in = true;
+                        for (int i = 0; i < D; ++i) in = in && (g[i] >> ch.level) == ch.index[i];
+                        if (in) v.push_back(g);
+                    }
+                    newcells.push_back(ch);
+                }
+            }
+            for (const CellId<D>& ch : newcells) {
+                const auto nb = neighbour_leaves(ch);
+                const std::size_t own = leaves_.at(ch).size();
+                bool crowded = own >= 2;
+                if (own == 1)
+                    for (const auto& c2 : nb) crowded = crowded || !leaves_.at(c2).empty();
+                if (crowded) w[ch.level].push_back(ch);
+                for (const auto& c2 : nb)
+                    if (c2.level >= ch.level + 2) w[c2.level].push_back(c2);
+            }
+            l = std::min(l + 1, K);
+        }
+    }
+    [[nodiscard]] std::vector<CellId<D>> leaves() const {
+        std::vector<CellId<D>> out;
+        for (const auto& [c, v] : leaves_) out.push_back(c);
+        return out;  // std::map: already sorted
+    }
+
+private:
+    static CellId<D> child(const CellId<D>& c, int mask) {
+        CellId<D> ch{c.level - 1, {}};
+        for (int i = 0; i < D; ++i) ch.index[i] = 2 * c.index[i] + ((mask >> i) & 1);
+        return ch;
+    }
+    static bool touches(const CellId<D>& a, const CellId<D>& b) {
+        for (int i = 0; i < D; ++i) {
+            const std::uint64_t alo = a.index[i] << a.level, ahi = (a.index[i] + 1) << a.level;
+            const std::uint64_t blo = b.index[i] << b.level, bhi = (b.index[i] + 1) << b.level;
+            if (ahi < blo || bhi < alo) return false;
+        }
+        return true;
+    }
+    void collect(const CellId<D>& y, const CellId<D>& x, std::set<CellId<D>>& out) const {
+        if (!touches(y, x)) return;
+        if (leaves_.contains(y)) {
+            out.insert(y);
+        } else if (internal_.contains(y)) {
+            for (int mask = 0; mask < (1 << D); ++mask) collect(child(y, mask), x, out);
+        }
+    }
+    std::set<CellId<D>> neighbour_leaves(const CellId<D>& x) const {
+        std::set<CellId<D>> out;
+        const std::int64_t n = std::int64_t{1} << (K - x.level);
+        std::array<int, D> o;
+        o.fill(-1);
+        while (true) {
+            CellId<D> y{x.level, {}};
+            bool ok = false;
+            for (int i = 0; i < D; ++i) ok = ok || o[i] != 0;
+            for (int i = 0; i < D && ok; ++i) {
+                const std::int64_t v = static_cast<std::int64_t>(x.index[i]) + o[i];
+                ok = v >= 0 && v < n;
+                y.index[i] = static_cast<std::uint64_t>(v);
+            }
+            if (ok) {
+                CellId<D> z = y;  // a leaf containing y, if any
+                while (z.level < K && !leaves_.contains(z) && !internal_.contains(z)) {
+                    for (auto& v : z.index) v >>= 1;
+                    ++z.level;
+                }
+                if (leaves_.contains(z))
+                    out.insert(z);
+                else
+                    collect(y, x, out);
+            }
+            int i = 0;
+            while (i < D && o[i] == 1) o[i++] = -1;
+            if (i == D) break;
+            ++o[i];
+        }
+        return out;
+    }
+
+    std::map<CellId<D>, std::vector<GP>> leaves_;
+    std::set<CellId<D>> internal_;
+};
+
+template <int D>
+void check_paper_oracle(std::uint64_t seed, int sets) {
+    Rng rng(seed);
+    for (int s = 0; s < sets; ++s) {
+        const auto pts = D == 2 ? point_pool<D>(rng, 2 + rng.below(24), /*max_exp=*/16)
+                                : point_pool<D>(rng, 2 + rng.below(12), /*max_exp=*/8, 0.0);
+        const Tree<D> built = Tree<D>::build(pts);
+        std::vector<typename Tree<D>::GridPoint> grid;
+        for (const auto& p : pts) grid.push_back(built.grid_point(p));
+        ASSERT_EQ(PaperQtr<D>(grid).leaves(), built.leaves()) << "seed " << seed << " set " << s;
+    }
+}
+
+TEST(DynQuadtree, PaperFigure2OrderGivesTheCanonicalTree2D) { check_paper_oracle<2>(31, 200); }
+TEST(DynQuadtree, PaperFigure2OrderGivesTheCanonicalTree3D) { check_paper_oracle<3>(32, 60); }
+
+/// Runs `sequences` random insert/erase sequences; after each, compares the dynamic tree with
+/// a shuffled re-insertion, a sorted re-insertion and build() of the final set (and, for small
+/// sets, with the brute-force oracle). Checks invariants after every operation if asked.
+template <int D>
+void run_history_independence(std::uint64_t seed, int sequences, bool check_every_op) {
+    Rng rng(seed);
+    for (int s = 0; s < sequences; ++s) {
+        const auto pool = D == 2 ? point_pool<D>(rng, 4 + rng.below(28), /*max_exp=*/24)
+                                 : point_pool<D>(rng, 4 + rng.below(20), /*max_exp=*/12,
+                                                 /*tiny=*/0.02);
+        Tree<D> tree;
+        std::set<std::size_t> present;
+        const std::size_t ops = 10 + rng.below(50);
+        for (std::size_t k = 0; k < ops; ++k) {
+            const std::size_t i = rng.below(pool.size());
+            if (rng.coin(0.62)) {
+                const InsertResult r = tree.insert(pool[i]);
+                ASSERT_EQ(r,
+                          present.contains(i) ? InsertResult::Duplicate : InsertResult::Inserted);
+                present.insert(i);
+            } else {
+                const EraseResult r = tree.erase(pool[i]);
+                ASSERT_EQ(r, present.contains(i) ? EraseResult::Erased : EraseResult::NotFound);
+                present.erase(i);
+            }
+            ASSERT_EQ(tree.size(), present.size());
+            if (check_every_op) {
+                const auto bad = tree.check_invariants();
+                ASSERT_TRUE(bad.empty()) << "seed " << seed << " seq " << s << " op " << k << ":\n"
+                                         << joined(bad);
+            }
+        }
+        std::vector<PointD<D>> final_set;
+        for (std::size_t i : present) final_set.push_back(pool[i]);
+        const std::string dump = tree.canonical_dump();
+
+        const Tree<D> built = Tree<D>::build(final_set);
+        ASSERT_EQ(built.canonical_dump(), dump) << "seed " << seed << " seq " << s;
+
+        auto shuffled = final_set;
+        for (std::size_t i = shuffled.size(); i > 1; --i)
+            std::swap(shuffled[i - 1], shuffled[rng.below(i)]);
+        Tree<D> again;
+        for (const auto& p : shuffled) ASSERT_EQ(again.insert(p), InsertResult::Inserted);
+        ASSERT_EQ(again.canonical_dump(), dump) << "seed " << seed << " seq " << s;
+
+        auto sorted = final_set;
+        std::sort(sorted.begin(), sorted.end(), [](const PointD<D>& a, const PointD<D>& b) {
+            for (int i = 0; i < D; ++i) {
+                const auto ui = static_cast<std::size_t>(i);
+                if (a[ui] != b[ui]) return a[ui] < b[ui];
+            }
+            return false;
+        });
+        Tree<D> ordered;
+        for (const auto& p : sorted) ASSERT_EQ(ordered.insert(p), InsertResult::Inserted);
+        ASSERT_EQ(ordered.canonical_dump(), dump) << "seed " << seed << " seq " << s;
+
+        if (final_set.size() <= 24 && s % 4 == 0) {
+            std::vector<typename Tree<D>::GridPoint> grid;
+            for (const auto& p : final_set) grid.push_back(tree.grid_point(p));
+            ASSERT_EQ(tree.leaves(), oracle_leaves<D>(grid)) << "seed " << seed << " seq " << s;
+        }
+        if (!check_every_op) {
+            const auto bad = tree.check_invariants();
+            ASSERT_TRUE(bad.empty()) << "seed " << seed << " seq " << s << ":\n" << joined(bad);
+        }
+    }
+}
+
+TEST(DynQuadtree, EmptyTreeIsTheRootLeaf) {
+    const Tree<2> t2;
+    EXPECT_EQ(t2.size(), 0u);
+    EXPECT_EQ(t2.leaf_count(), 1u);
+    EXPECT_TRUE(t2.check_invariants().empty());
+    const Tree<3> t3;
+    EXPECT_EQ(t3.leaf_count(), 1u);
+    EXPECT_TRUE(t3.check_invariants().empty());
+    EXPECT_EQ(Tree<2>::build({}).canonical_dump(), t2.canonical_dump());
+}
+
+TEST(DynQuadtree, OnePointDoesNotSplitTwoPointsDo) {
+    Tree<2> t;
+    ASSERT_EQ(t.insert({0.5, 0.5}), InsertResult::Inserted);
+    EXPECT_EQ(t.leaf_count(), 1u);
+    ASSERT_EQ(t.insert({0.4, 0.6}), InsertResult::Inserted);
+    EXPECT_GT(t.leaf_count(), 1u);
+    EXPECT_FALSE(t.last_update().split.empty());
+    EXPECT_TRUE(t.check_invariants().empty());
+    ASSERT_EQ(t.erase({0.4, 0.6}), EraseResult::Erased);
+    EXPECT_EQ(t.leaf_count(), 1u);
+    EXPECT_FALSE(t.last_update().merged.empty());
+}
+
+TEST(DynQuadtree, HistoryIndependence2D) { run_history_independence<2>(11, 1000, false); }
+TEST(DynQuadtree, HistoryIndependence3D) { run_history_independence<3>(12, 300, false); }
+TEST(DynQuadtree, InvariantsAfterEveryOperation2D) { run_history_independence<2>(21, 80, true); }
+TEST(DynQuadtree, InvariantsAfterEveryOperation3D) { run_history_independence<3>(22, 15, true); }
+
+template <int D>
+void check_bad_input_unchanged() {
+    Rng rng(5);
+    Tree<D> t;
+    const auto pool = point_pool<D>(rng, 20);
+    for (const auto& p : pool) ASSERT_EQ(t.insert(p), InsertResult::Inserted);
+    const std::string before = t.canonical_dump();
+    const auto report_splits = t.last_update().split;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+
+    EXPECT_EQ(t.insert(pool[3]), InsertResult::Duplicate);
+    PointD<D> near = pool[3];
+    near[0] = std::nextafter(near[0], 1.0);  // snaps to the same grid point
+    EXPECT_EQ(t.insert(near), InsertResult::Duplicate);
+    PointD<D> out = pool[0];
+    out[0] = 0.3;
+    EXPECT_EQ(t.insert(out), InsertResult::OutsideDomain);
+    out[0] = 0.7;
+    EXPECT_EQ(t.insert(out), InsertResult::OutsideDomain);
+    PointD<D> bad = pool[0];
+    bad[D - 1] = nan;
+    EXPECT_EQ(t.insert(bad), InsertResult::NotFinite);
+    bad[D - 1] = -inf;
+    EXPECT_EQ(t.insert(bad), InsertResult::NotFinite);
+    EXPECT_EQ(t.erase(make_point<D>({0.5 + 1e-7, 0.5, 0.5})), EraseResult::NotFound);
+    EXPECT_EQ(t.erase(out), EraseResult::NotFound);
+    EXPECT_EQ(t.erase(bad), EraseResult::NotFound);
+
+    EXPECT_EQ(t.canonical_dump(), before);
+    EXPECT_EQ(t.size(), pool.size());
+    EXPECT_EQ(t.last_update().split, report_splits);
+    EXPECT_TRUE(t.check_invariants().empty());
+
+    // The middle third is closed.
+    Tree<D> edge;
+    EXPECT_EQ(edge.insert(make_point<D>({1.0 / 3.0, 2.0 / 3.0, 0.5})), InsertResult::Inserted);
+}
+
+TEST(DynQuadtree, BadInputLeavesStateUnchanged2D) { check_bad_input_unchanged<2>(); }
+TEST(DynQuadtree, BadInputLeavesStateUnchanged3D) { check_bad_input_unchanged<3>(); }
+
+TEST(DynQuadtree, BuildRejectsBadInput) {
+    const std::vector<Vec2> dup{{0.5, 0.5}, {0.4, 0.4}, {0.5, 0.5}};
+    EXPECT_THROW((void)Tree<2>::build(dup), InvalidInput);
+    const std::vector<Vec2> outside{{0.5, 0.5}, {0.1, 0.5}};
+    EXPECT_THROW((void)Tree<2>::build(outside), InvalidInput);
+    const std::vector<Vec2> nan{{0.5, std::numeric_limits<double>::quiet_NaN()}};
+    EXPECT_THROW((void)Tree<2>::build(nan), InvalidInput);
+    EXPECT_THROW(Tree<2>({.origin = {0, 0}, .width = 0.0}), InvalidInput);
+    EXPECT_THROW(Tree<3>({.origin = {0, std::nan(""), 0}, .width = 1.0}), InvalidInput);
+    const Tree<2> t;
+    EXPECT_THROW((void)t.grid_point({0.9, 0.5}), InvalidInput);
+}
+
+template <int D>
+void check_clustered(double spacing) {
+    Tree<D> t;
+    std::vector<PointD<D>> pts;
+    Rng rng(9);
+    // A tight cluster at spacing `spacing`, one at 1e-9, plus a few far points.
+    for (int i = 0; i < 12; ++i) {
+        PointD<D> p = make_point<D>({0.5, 0.45, 0.55});
+        p[0] += spacing * i;
+        p[1] += spacing * (i % 3);
+        pts.push_back(p);
+    }
+    for (int i = 0; i < 6; ++i) pts.push_back(make_point<D>({0.61 + 1e-9 * i, 0.4, 0.6}));
+    for (int i = 0; i < 6; ++i)
+        pts.push_back(make_point<D>(
+            {rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)}));
+    for (const auto& p : pts) {
+        ASSERT_EQ(t.insert(p), InsertResult::Inserted);
+        const auto bad = t.check_invariants();
+        ASSERT_TRUE(bad.empty()) << joined(bad);
+    }
+    EXPECT_EQ(Tree<D>::build(pts).canonical_dump(), t.canonical_dump());
+    // Deep: the smallest leaf is far below the cluster spacing's level 0 of the domain.
+    int min_level = Tree<D>::kLevels;
+    for (const auto& c : t.leaves()) min_level = std::min(min_level, c.level);
+    EXPECT_LT(min_level, 52 + static_cast<int>(std::log2(spacing)) + 2);
+    for (std::size_t i = 0; i < pts.size(); i += 2) {
+        ASSERT_EQ(t.erase(pts[i]), EraseResult::Erased);
+        const auto bad = t.check_invariants();
+        ASSERT_TRUE(bad.empty()) << joined(bad);
+    }
+    std::vector<PointD<D>> rest;
+    for (std::size_t i = 1; i < pts.size(); i += 2) rest.push_back(pts[i]);
+    EXPECT_EQ(Tree<D>::build(rest).canonical_dump(), t.canonical_dump());
+}
+
+TEST(DynQuadtree, ClusteredInputs2D) {
+    for (double s : {1e-3, 1e-6, 1e-9, 1e-12}) check_clustered<2>(s);
+}
+TEST(DynQuadtree, ClusteredInputs3D) { check_clustered<3>(1e-9); }
+
+template <int D>
+void check_erase_all() {
+    Rng rng(3);
+    const std::string empty = Tree<D>().canonical_dump();
+    for (int round = 0; round < 5; ++round) {
+        auto pool = point_pool<D>(rng, 60);
+        Tree<D> t;
+        for (const auto& p : pool) ASSERT_EQ(t.insert(p), InsertResult::Inserted);
+        for (std::size_t i = pool.size(); i > 1; --i) std::swap(pool[i - 1], pool[rng.below(i)]);
+        for (const auto& p : pool) ASSERT_EQ(t.erase(p), EraseResult::Erased);
+        EXPECT_EQ(t.size(), 0u);
+        EXPECT_EQ(t.leaf_count(), 1u);
+        EXPECT_EQ(t.internal_count(), 0u);
+        EXPECT_EQ(t.canonical_dump(), empty);
+        EXPECT_TRUE(t.check_invariants().empty());
+    }
+}
+
+TEST(DynQuadtree, EraseAllReturnsToEmptyTree2D) { check_erase_all<2>(); }
+TEST(DynQuadtree, EraseAllReturnsToEmptyTree3D) { check_erase_all<3>(); }
+
+TEST(DynQuadtree, EraseThenReinsertRestoresTheTree) {
+    Rng rng(4);
+    const auto pool = point_pool<2>(rng, 200);
+    Tree<2> t;
+    for (const auto& p : pool) ASSERT_EQ(t.insert(p), InsertResult::Inserted);
+    const std::string dump = t.canonical_dump();
+    for (std::size_t i = 0; i < pool.size(); i += 7) {
+        ASSERT_EQ(t.erase(pool[i]), EraseResult::Erased);
+        const auto merged = t.last_update().merged;
+        ASSERT_EQ(t.insert(pool[i]), InsertResult::Inserted);
+        // Insert undoes exactly what the erase did.
+        auto resplit = t.last_update().split;
+        auto m = merged;
+        std::sort(m.begin(), m.end());
+        std::sort(resplit.begin(), resplit.end());
+        EXPECT_EQ(resplit, m);
+        ASSERT_EQ(t.canonical_dump(), dump);
+    }
+}
+
+TEST(DynQuadtree, CustomDomain) {
+    const QuadtreeOptions<2> opt{.origin = {-30.0, 100.0}, .width = 300.0};
+    Tree<2> t(opt);
+    EXPECT_EQ(t.insert({0.0, 200.0}), InsertResult::OutsideDomain);
+    std::vector<Vec2> pts{{80.0, 200.0}, {85.0, 201.0}, {100.0, 250.0}, {80.0, 200.001}};
+    for (const auto& p : pts) ASSERT_EQ(t.insert(p), InsertResult::Inserted);
+    EXPECT_TRUE(t.check_invariants().empty());
+    EXPECT_EQ(Tree<2>::build(pts, opt).canonical_dump(), t.canonical_dump());
+    EXPECT_NE(Tree<2>::build(pts, opt).canonical_dump(), Tree<2>::build({}).canonical_dump());
+}
+
+TEST(DynQuadtree, LeafSizeTracksNearestNeighbourDistance) {
+    // Two points at distance d: the leaves holding them have size Θ(d).
+    for (int e = 5; e <= 45; e += 8) {
+        Tree<2> t;
+        const double d = std::ldexp(1.0, -e);
+        ASSERT_EQ(t.insert({0.5, 0.5}), InsertResult::Inserted);
+        ASSERT_EQ(t.insert({0.5 + d, 0.5}), InsertResult::Inserted);
+        int min_level = 99;
+        for (const auto& c : t.leaves()) min_level = std::min(min_level, c.level);
+        const double leaf_size = std::ldexp(1.0, min_level - 52);
+        EXPECT_GE(leaf_size, d / 8) << "e=" << e;
+        EXPECT_LE(leaf_size, d) << "e=" << e;
+        EXPECT_TRUE(t.check_invariants().empty());
+    }
+}
+
+}  // namespace
+}  // namespace dynmesh
