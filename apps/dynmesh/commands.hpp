@@ -11,5 +11,6 @@ void register_stats(CLI::App& root, int& result);
 void register_check(CLI::App& root, int& result);
 void register_sample(CLI::App& root, int& result);
 void register_experiment(CLI::App& root, int& result);
+void register_quadtree(CLI::App& root, int& result);
 
 }  // namespace dynmesh::cli

@@ -490,6 +490,19 @@ std::vector<CellId<D>> DynQuadtree<D>::leaves() const {
 }
 
 template <int D>
+std::vector<std::pair<typename DynQuadtree<D>::GridPoint, typename DynQuadtree<D>::Point>>
+DynQuadtree<D>::points() const {
+    std::vector<std::pair<GridPoint, Point>> out;
+    out.reserve(size_);
+    for (const auto& [k, n] : nodes_)
+        if (n.is_leaf)
+            for (const Entry& e : n.points) out.emplace_back(e.g, e.p);
+    std::sort(out.begin(), out.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
+template <int D>
 std::string DynQuadtree<D>::canonical_dump() const {
     std::vector<std::pair<CellId<D>, const Node*>> ls;
     for (const auto& [k, n] : nodes_)

@@ -17,7 +17,7 @@ mesh=$data/meshes/blobby.off
 case $case_name in
 help)
     run 0 "$bin" --help
-    for c in flip worsen stats check sample experiment; do
+    for c in flip worsen stats check sample experiment quadtree; do
         run 0 "$bin" $c --help
         grep -q -- "--report" out.txt || fail "$c --help does not mention --report"
     done
@@ -139,6 +139,71 @@ report_atomic)
     run 1 "$bin" stats "$mesh" --report no_such_dir/r.json
     [ -e no_such_dir ] && fail "created a directory"
     grep -q "no_such_dir" err.txt || fail "report path not named"
+    ;;
+quadtree_ops)
+    pts=$data/planar/dots.node
+    # An update script over dots.node (erase some points, insert new ones, erase one of those,
+    # re-insert an erased one) and the final point set it leads to, with exact coordinates.
+    python3 - "$pts" <<'PY' || fail "could not generate the ops file"
+import sys
+rows = []
+for line in open(sys.argv[1]):
+    t = line.split('#')[0].split()
+    if t: rows.append(t)
+pts = [(r[1], r[2]) for r in rows[1:]]
+ops, final = [], list(pts)
+for k in range(0, 30, 3):
+    ops.append(("-",) + pts[k]); final.remove(pts[k])
+new = []
+for k in range(5):
+    a, b = pts[40 + k], pts[60 + k]
+    q = (repr((float(a[0]) + float(b[0])) / 2), repr((float(a[1]) + float(b[1])) / 2))
+    ops.append(("+",) + q); final.append(q); new.append(q)
+ops.append(("-",) + new[2]); final.remove(new[2])
+ops.append(("+",) + pts[3]); final.append(pts[3])
+with open("ops.txt", "w") as f:
+    f.write("# generated update script\n")
+    for o in ops: f.write(" ".join(o) + "\n")
+with open("final.node", "w") as f:
+    f.write("%d 2 0 0\n" % len(final))
+    for i, q in enumerate(final): f.write("%d %s %s\n" % (i + 1, q[0], q[1]))
+PY
+    run 0 "$bin" quadtree "$pts" --ops ops.txt -o dyn.node --report dyn.json --check --quiet
+    for k in vertices elements min_angle_deg seconds_build ops; do json_get dyn.json "['$k']" >/dev/null || fail "quadtree report lacks $k"; done
+    [ "$(json_get dyn.json "['ops'].__len__()")" -eq "$(grep -c '^[-+]' ops.txt)" ] || fail "ops not all timed"
+    [ "$(json_get dyn.json "['ops'][0]['op']")" = "-" ] || fail "first op not an erase"
+    python3 -c "import json; d=json.load(open('dyn.json')); assert d['min_angle_deg'] >= 18.43, d" || fail "min angle below 18.43"
+    dom=$(python3 -c "import json; d=json.load(open('dyn.json'))['domain']; print('%r,%r,%r' % (d['origin'][0], d['origin'][1], d['width']))")
+    run 0 "$bin" quadtree final.node --domain "$dom" -o scratch.node --check --quiet
+    cmp -s dyn.node scratch.node || fail "dynamic and from-scratch .node differ"
+    cmp -s dyn.ele scratch.ele || fail "dynamic and from-scratch .ele differ"
+    run 0 "$bin" quadtree "$pts" -o dots.off --quiet
+    head -1 dots.off | grep -q OFF || fail "no OFF output"
+    ;;
+quadtree_bad)
+    pts=$data/planar/dots.node
+    expect_error() {  # expect_error PATTERN ARGS...: exit 1, one line naming PATTERN, no output
+        local pat=$1; shift
+        run 1 "$bin" quadtree "$@" -o out.node --quiet
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "error is not one line: $(cat err.txt)"
+        grep -q -- "$pat" err.txt || fail "error does not name '$pat': $(cat err.txt)"
+        [ -e out.node ] || [ -e out.ele ] && fail "an output was written for: $*"
+        true
+    }
+    printf '3 2 0 0\n1 0.1 0.2\n2 0.5 0.5\n3 0.1 0.2\n' > dup.node
+    expect_error "dup.node:4" dup.node
+    printf '0.1 0.2\nnan 0.5\n' > nan.xy
+    expect_error "nan.xy:2" nan.xy
+    printf '+ 0.1 0.2\n\n- 5 5\n' > missing.txt
+    expect_error "missing.txt:3" "$pts" --ops missing.txt
+    printf '+ 0.1 0.2\n* 0.3 0.3\n' > malformed.txt
+    expect_error "malformed.txt:2" "$pts" --ops malformed.txt
+    printf '+ 0.1 x\n' > notnum.txt
+    expect_error "notnum.txt:1" "$pts" --ops notnum.txt
+    printf '+ 0.0476694 0.809168\n' > dupop.txt
+    expect_error "dupop.txt:1" "$pts" --ops dupop.txt
+    expect_error "middle third" "$pts" --domain 0,0,1
+    expect_error "only 2" "$pts" --dim 3
     ;;
 *) fail "unknown case" ;;
 esac

@@ -25,6 +25,7 @@
 #include <string>
 #include <type_traits>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
@@ -116,6 +117,9 @@ public:
 
     /// Every leaf, sorted by (level, index).
     [[nodiscard]] std::vector<CellId<D>> leaves() const;
+    /// Every stored point with its grid coordinates, sorted by grid coordinates (canonical
+    /// order: independent of the history of updates).
+    [[nodiscard]] std::vector<std::pair<GridPoint, Point>> points() const;
     /// Deterministic text form of the tree: a header line, then one line per leaf sorted by
     /// (level, index) with the grid coordinates of its point if it holds one. Equal point sets
     /// (up to snapping) over equal domains give byte-identical dumps, whatever the history.

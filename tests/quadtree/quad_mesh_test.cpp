@@ -1,0 +1,163 @@
+#include "dynmesh/quadtree/quad_mesh.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+
+namespace dynmesh {
+namespace {
+
+std::string joined(const std::vector<std::string>& v) {
+    std::string s;
+    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += v[i] + "\n";
+    return s;
+}
+
+/// Uniform points in the middle third of [0, 1]^2.
+std::vector<Vec2> uniform_points(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < n; ++i)
+        out.push_back({rng.uniform(1.0 / 3, 2.0 / 3), rng.uniform(1.0 / 3, 2.0 / 3)});
+    return out;
+}
+
+/// Clusters of points with spreads from 1e-2 down to 1e-9 of the domain.
+std::vector<Vec2> clustered_points(std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Vec2> out;
+    const double spreads[] = {1e-2, 1e-4, 1e-6, 1e-9};
+    for (double spread : spreads) {
+        const Vec2 c{rng.uniform(0.4, 0.6), rng.uniform(0.4, 0.6)};
+        for (int i = 0; i < 12; ++i)
+            out.push_back({c.x + spread * rng.uniform(), c.y + spread * rng.uniform()});
+    }
+    return out;
+}
+
+/// Validity, quality and "every input point is a vertex", for one tree.
+void expect_good_mesh(const DynQuadtree<2>& tree, const std::string& what) {
+    const QuadMesh2 mesh = quad_mesh(tree);
+    const auto bad = check_quad_mesh(mesh);
+    EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
+    const auto pts = tree.points();
+    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
+        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
+    }
+    const AngleRangeDeg a = angle_range_deg(mesh);
+    EXPECT_GE(a.min, kQuadMeshMinAngleDeg - 1e-6) << what;
+    EXPECT_LE(a.max, kQuadMeshMaxAngleDeg + 1e-6) << what;
+    EXPECT_LE(mesh.triangles.size(), 8 * mesh.leaves) << what;  // spec §4.6
+}
+
+TEST(QuadMesh, EmptyTreeIsTwoTriangles) {
+    const DynQuadtree<2> tree;
+    const QuadMesh2 mesh = quad_mesh(tree);
+    EXPECT_EQ(mesh.points.size(), 4u);
+    EXPECT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_TRUE(check_quad_mesh(mesh).empty());
+}
+
+TEST(QuadMesh, SingleAndTwoPoints) {
+    const std::vector<Vec2> one = {{0.5, 0.5}};
+    expect_good_mesh(DynQuadtree<2>::build(one), "one point");
+    const std::vector<Vec2> two = {{0.4, 0.41}, {0.6, 0.58}};
+    expect_good_mesh(DynQuadtree<2>::build(two), "two points");
+    const std::vector<Vec2> corner = {{1.0 / 3, 1.0 / 3}, {0.6, 0.6}};
+    expect_good_mesh(DynQuadtree<2>::build(corner), "middle-third corner");
+}
+
+TEST(QuadMesh, RandomInputsAreValid) {
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        const auto pts = uniform_points(300, seed);
+        expect_good_mesh(DynQuadtree<2>::build(pts), "uniform seed " + std::to_string(seed));
+    }
+}
+
+TEST(QuadMesh, ClusteredInputsAreValid) {
+    for (std::uint64_t seed : {4u, 5u, 6u}) {
+        const auto pts = clustered_points(seed);
+        expect_good_mesh(DynQuadtree<2>::build(pts), "clustered seed " + std::to_string(seed));
+    }
+}
+
+TEST(QuadMesh, DyadicLatticePointsAreValid) {
+    // Points on cell boundaries and exactly half-way inside cells: exercises the half-open
+    // containment and the "ties round up" warping rule.
+    for (std::uint64_t seed : {21u, 22u, 23u}) {
+        Rng rng(seed);
+        std::vector<Vec2> pts;
+        std::vector<std::pair<std::uint64_t, std::uint64_t>> used;
+        for (int i = 0; i < 120; ++i) {
+            const std::uint64_t a = 86 + rng.below(85), b = 86 + rng.below(85);  // [1/3, 2/3]·256
+            if (std::find(used.begin(), used.end(), std::pair{a, b}) != used.end()) continue;
+            used.push_back({a, b});
+            pts.push_back({static_cast<double>(a) / 256, static_cast<double>(b) / 256});
+        }
+        expect_good_mesh(DynQuadtree<2>::build(pts), "lattice seed " + std::to_string(seed));
+    }
+}
+
+TEST(QuadMesh, NonUnitDomain) {
+    const QuadtreeOptions<2> options{.origin = {-3.0, 10.0}, .width = 6.0};
+    Rng rng(9);
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 100; ++i) pts.push_back({rng.uniform(-1.0, 1.0), rng.uniform(12.0, 14.0)});
+    expect_good_mesh(DynQuadtree<2>::build(pts, options), "domain [-3,3]x[10,16]");
+}
+
+void expect_same_mesh(const QuadMesh2& a, const QuadMesh2& b, const std::string& what) {
+    EXPECT_EQ(a.points, b.points) << what;
+    EXPECT_EQ(a.triangles, b.triangles) << what;
+}
+
+TEST(QuadMesh, HistoryIndependentAfterInsertsAndErases) {
+    for (std::uint64_t seed : {11u, 12u}) {
+        auto pool = uniform_points(150, seed);
+        const auto cl = clustered_points(seed);
+        pool.insert(pool.end(), cl.begin(), cl.end());
+        Rng rng(seed * 7);
+        DynQuadtree<2> tree;
+        std::vector<Vec2> present;
+        for (int step = 0; step < 400; ++step) {
+            if (!present.empty() && rng.coin(0.35)) {
+                const std::size_t k = rng.below(present.size());
+                ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
+                present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
+            } else {
+                const Vec2 p = pool[rng.below(pool.size())];
+                if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
+            }
+            if (step % 100 == 99) {
+                const std::string what =
+                    "seed " + std::to_string(seed) + " step " + std::to_string(step);
+                const QuadMesh2 dynamic = quad_mesh(tree);
+                expect_same_mesh(dynamic, quad_mesh(DynQuadtree<2>::build(present)), what);
+                EXPECT_TRUE(check_quad_mesh(dynamic).empty()) << what;
+            }
+        }
+    }
+}
+
+TEST(QuadMesh, CheckerFindsBrokenMeshes) {
+    const std::vector<Vec2> pts = {{0.45, 0.5}, {0.55, 0.52}};
+    QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(pts));
+    ASSERT_TRUE(check_quad_mesh(mesh).empty());
+    QuadMesh2 flipped = mesh;
+    std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+    EXPECT_FALSE(check_quad_mesh(flipped).empty());
+    QuadMesh2 missing = mesh;
+    missing.triangles.pop_back();
+    EXPECT_FALSE(check_quad_mesh(missing).empty());
+}
+
+}  // namespace
+}  // namespace dynmesh
