@@ -1,0 +1,152 @@
+/// Single insert/erase updates of the dynamic balanced quadtree (2D: n = 1e3 ... 1e6; 3D:
+/// 1e3 ... 1e5), uniform and clustered inputs, against rebuilding a quality mesh of the same
+/// points with CGAL's 2D Delaunay mesher (refine_Delaunay_mesh_2, B = sqrt(2), about 20.7
+/// degrees) in the same run. Prints per-update times and the rebuild/update ratio.
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+
+namespace {
+
+using namespace dynmesh;
+
+/// n points in the middle third of the unit box; clustered = 20 tight Gaussian blobs.
+template <int D>
+std::vector<PointD<D>> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<PointD<D>> centres(20);
+    for (auto& c : centres)
+        for (int k = 0; k < D; ++k) c[k] = rng.uniform(0.4, 0.6);
+    std::vector<PointD<D>> pts(n);
+    for (auto& p : pts) {
+        const auto& c = centres[rng.below(centres.size())];
+        for (int k = 0; k < D; ++k)
+            p[k] = clustered ? std::clamp(c[k] + 0.01 * rng.normal(), 0.34, 0.66) : rng.uniform(0.34, 0.66);
+    }
+    return pts;
+}
+
+template <int D>
+struct TreeFixture {
+    DynQuadtree<D> tree;
+    std::vector<PointD<D>> queries;  // points not in the tree
+};
+
+template <int D>
+TreeFixture<D>& fixture(std::size_t n, bool clustered) {
+    static std::map<std::pair<std::size_t, bool>, TreeFixture<D>> cache;
+    auto it = cache.find({n, clustered});
+    if (it != cache.end()) return it->second;
+    const auto pts = make_points<D>(n, clustered, 1);
+    TreeFixture<D> f{DynQuadtree<D>::build(pts), make_points<D>(4096, clustered, 2)};
+    return cache.emplace(std::make_pair(n, clustered), std::move(f)).first->second;
+}
+
+/// One iteration = insert a new point, then erase it again (two updates).
+template <int D>
+void BM_Update(benchmark::State& state, bool clustered) {
+    auto& f = fixture<D>(static_cast<std::size_t>(state.range(0)), clustered);
+    std::size_t i = 0, updates = 0;
+    for (auto _ : state) {
+        const auto& q = f.queries[i++ % f.queries.size()];
+        if (f.tree.insert(q) == InsertResult::Inserted) {
+            benchmark::DoNotOptimize(f.tree.erase(q));
+            updates += 2;
+        }
+    }
+    state.counters["updates"] = double(updates);
+    state.counters["us_per_update"] = benchmark::Counter(
+        double(updates) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["leaves"] = double(f.tree.leaf_count());
+}
+
+void BM_Update2D_Uniform(benchmark::State& s) { BM_Update<2>(s, false); }
+void BM_Update2D_Clustered(benchmark::State& s) { BM_Update<2>(s, true); }
+void BM_Update3D_Uniform(benchmark::State& s) { BM_Update<3>(s, false); }
+
+void BM_CgalMesher2D_Rebuild(benchmark::State& state) {
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Vb = CGAL::Triangulation_vertex_base_2<K>;
+    using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+    using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
+    using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+    const auto pts = make_points<2>(static_cast<std::size_t>(state.range(0)), false, 1);
+    std::size_t vertices = 0;
+    for (auto _ : state) {
+        CDT cdt;
+        const auto a = cdt.insert(K::Point_2(0, 0)), b = cdt.insert(K::Point_2(1, 0)),
+                   c = cdt.insert(K::Point_2(1, 1)), d = cdt.insert(K::Point_2(0, 1));
+        cdt.insert_constraint(a, b);
+        cdt.insert_constraint(b, c);
+        cdt.insert_constraint(c, d);
+        cdt.insert_constraint(d, a);
+        for (const auto& p : pts) cdt.insert(K::Point_2(p.x, p.y));
+        CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125));  // B = sqrt(2) <=> about 20.7 deg
+        vertices = cdt.number_of_vertices();
+        benchmark::DoNotOptimize(vertices);
+    }
+    state.counters["mesh_vertices"] = double(vertices);
+}
+
+BENCHMARK(BM_Update2D_Uniform)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Update2D_Clustered)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Update3D_Uniform)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CgalMesher2D_Rebuild)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+class SummaryReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& r : runs) {
+            if (r.run_type != Run::RT_Iteration || r.iterations == 0) continue;
+            const std::string name = r.benchmark_name();
+            const auto slash = name.find('/');
+            if (slash == std::string::npos) continue;
+            const std::size_t n = std::stoul(name.substr(slash + 1));
+            double per = r.real_accumulated_time / double(r.iterations);
+            if (auto u = r.counters.find("updates"); u != r.counters.end() && double(u->second) > 0)
+                per = r.real_accumulated_time / double(u->second);
+            times_[name.substr(0, slash)][n] = per;
+        }
+        ConsoleReporter::ReportRuns(runs);
+    }
+    void Summary() const {
+        std::printf("\nSummary: seconds per single update, and CGAL mesher rebuild / one update\n");
+        const auto cgal = times_.find("BM_CgalMesher2D_Rebuild");
+        for (const auto& [fn, by_n] : times_) {
+            if (fn == "BM_CgalMesher2D_Rebuild") continue;
+            for (const auto& [n, t] : by_n) {
+                std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, t * 1e6);
+                if (fn == "BM_Update2D_Uniform" && cgal != times_.end() && cgal->second.count(n))
+                    std::printf("   CGAL rebuild %9.4f s = %10.0f x", cgal->second.at(n), cgal->second.at(n) / t);
+                std::printf("\n");
+            }
+        }
+    }
+
+private:
+    std::map<std::string, std::map<std::size_t, double>> times_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    SummaryReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    reporter.Summary();
+    benchmark::Shutdown();
+    return 0;
+}
