@@ -17,6 +17,7 @@
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "recording_reporter.hpp"
 
 namespace {
 
@@ -100,62 +101,28 @@ BENCHMARK(BM_FlipSmooth)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark:
 BENCHMARK(BM_CgalIsotropicRemeshing1Iter)->Arg(10000)->Arg(100000)->Arg(1000000)
     ->Unit(benchmark::kMillisecond)->Iterations(1)->Complexity(benchmark::oN);
 
-/// Keeps the per-run times to print the comparison after Google Benchmark's own table.
-class SummaryReporter : public benchmark::ConsoleReporter {
-public:
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs) {
-            if (r.run_type != Run::RT_Iteration || r.iterations == 0) continue;
-            const std::string name = r.benchmark_name();
-            const auto slash = name.find('/');
-            if (slash == std::string::npos) continue;
-            const std::string fn = name.substr(0, slash);
-            const std::size_t n = std::stoul(name.substr(slash + 1));
-            const double secs = r.real_accumulated_time / double(r.iterations);
-            times_[fn][n] = secs;
-            if (fn == "BM_FlipSmooth") {
-                auto it = r.counters.find("flips");
-                flips_[n] = it == r.counters.end() ? 0 : double(it->second);
-                auto v = r.counters.find("vertices");
-                vertices_[n] = v == r.counters.end() ? double(n) : double(v->second);
-            }
-        }
-        ConsoleReporter::ReportRuns(runs);
+/// Time per vertex, flips per second and the ratio to CGAL, after Google Benchmark's table.
+void print_summary(const dynmesh::bench::RecordingReporter& rep) {
+    const auto& ours = rep.runs("BM_FlipSmooth");
+    const auto& cgal = rep.runs("BM_CgalIsotropicRemeshing1Iter");
+    if (ours.empty()) return;
+    std::printf("\nSummary: flip smoothing of worsened unit-sphere meshes (one core)\n");
+    std::printf("%10s %12s %14s %12s %14s %16s %12s\n", "samples", "vertices", "dynmesh [s]",
+                "ns/vertex", "flips/vertex", "flips/s", "CGAL/dynmesh");
+    for (const auto& [n, r] : ours) {
+        const double t = r.seconds, v = r.counter("vertices", double(n)), fl = r.counter("flips");
+        const double ratio = cgal.count(n) ? cgal.at(n).seconds / t : 0.0;
+        std::printf("%10zu %12.0f %14.4f %12.1f %14.3f %16.3e %12.1f\n", n, v, t, t / v * 1e9,
+                    fl / v, fl / t, ratio);
     }
-    void Summary() const {
-        auto ours = times_.find("BM_FlipSmooth");
-        auto cgal = times_.find("BM_CgalIsotropicRemeshing1Iter");
-        if (ours == times_.end()) return;
-        std::printf("\nSummary: flip smoothing of worsened unit-sphere meshes (one core)\n");
-        std::printf("%10s %12s %14s %12s %14s %16s %12s\n", "samples", "vertices", "dynmesh [s]",
-                    "ns/vertex", "flips/vertex", "flips/s", "CGAL/dynmesh");
-        for (const auto& [n, t] : ours->second) {
-            const double v = vertices_.at(n), fl = flips_.at(n);
-            double ratio = 0;
-            if (cgal != times_.end() && cgal->second.count(n)) ratio = cgal->second.at(n) / t;
-            std::printf("%10zu %12.0f %14.4f %12.1f %14.3f %16.3e %12.1f\n", n, v, t, t / v * 1e9,
-                        fl / v, fl / t, ratio);
-        }
-        if (cgal != times_.end()) {
-            std::printf("CGAL isotropic_remeshing, 1 iteration, target = mean edge length:\n");
-            for (const auto& [n, t] : cgal->second)
-                std::printf("%10zu %14.4f s %10.1f ns/vertex\n", n, t, t / vertices_.at(n) * 1e9);
-        }
+    if (!cgal.empty()) {
+        std::printf("CGAL isotropic_remeshing, 1 iteration, target = mean edge length:\n");
+        for (const auto& [n, r] : cgal)
+            std::printf("%10zu %14.4f s %10.1f ns/vertex\n", n, r.seconds,
+                        r.seconds / r.counter("vertices", double(n)) * 1e9);
     }
-
-private:
-    std::map<std::string, std::map<std::size_t, double>> times_;
-    std::map<std::size_t, double> flips_, vertices_;
-};
+}
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    SummaryReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    reporter.Summary();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return dynmesh::bench::run_benchmarks(argc, argv, print_summary); }

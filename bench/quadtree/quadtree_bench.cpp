@@ -9,12 +9,14 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <string>
 
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "recording_reporter.hpp"
 
 namespace {
 
@@ -65,6 +67,7 @@ void BM_Update(benchmark::State& state, bool clustered) {
         }
     }
     state.counters["updates"] = double(updates);
+    state.counters["updates_per_iteration"] = double(updates) / double(state.iterations());
     state.counters["us_per_update"] = benchmark::Counter(
         double(updates) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["leaves"] = double(f.tree.leaf_count());
@@ -105,48 +108,23 @@ BENCHMARK(BM_Update3D_Uniform)->RangeMultiplier(10)->Range(1000, 100000)->Unit(b
 BENCHMARK(BM_CgalMesher2D_Rebuild)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
-class SummaryReporter : public benchmark::ConsoleReporter {
-public:
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs) {
-            if (r.run_type != Run::RT_Iteration || r.iterations == 0) continue;
-            const std::string name = r.benchmark_name();
-            const auto slash = name.find('/');
-            if (slash == std::string::npos) continue;
-            const std::size_t n = std::stoul(name.substr(slash + 1));
-            double per = r.real_accumulated_time / double(r.iterations);
-            if (auto u = r.counters.find("updates"); u != r.counters.end() && double(u->second) > 0)
-                per = r.real_accumulated_time / double(u->second);
-            times_[name.substr(0, slash)][n] = per;
-        }
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Summary() const {
-        std::printf("\nSummary: seconds per single update, and CGAL mesher rebuild / one update\n");
-        const auto cgal = times_.find("BM_CgalMesher2D_Rebuild");
-        for (const auto& [fn, by_n] : times_) {
-            if (fn == "BM_CgalMesher2D_Rebuild") continue;
-            for (const auto& [n, t] : by_n) {
-                std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, t * 1e6);
-                if (fn == "BM_Update2D_Uniform" && cgal != times_.end() && cgal->second.count(n))
-                    std::printf("   CGAL rebuild %9.4f s = %10.0f x", cgal->second.at(n), cgal->second.at(n) / t);
-                std::printf("\n");
-            }
+/// Per-update times and the CGAL rebuild / one update ratio, after Google Benchmark's table.
+void print_summary(const dynmesh::bench::RecordingReporter& rep) {
+    std::printf("\nSummary: seconds per single update, and CGAL mesher rebuild / one update\n");
+    const auto& cgal = rep.runs("BM_CgalMesher2D_Rebuild");
+    for (const auto& [fn, by_n] : rep.all()) {
+        if (fn == "BM_CgalMesher2D_Rebuild") continue;
+        for (const auto& [n, r] : by_n) {
+            // One iteration is an insert and an erase of the same point (two updates).
+            const double per = r.seconds / std::max(r.counter("updates_per_iteration", 1.0), 1e-300);
+            std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
+            if (fn == "BM_Update2D_Uniform" && cgal.count(n))
+                std::printf("   CGAL rebuild %9.4f s = %10.0f x", cgal.at(n).seconds, cgal.at(n).seconds / per);
+            std::printf("\n");
         }
     }
-
-private:
-    std::map<std::string, std::map<std::size_t, double>> times_;
-};
+}
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    SummaryReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    reporter.Summary();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return dynmesh::bench::run_benchmarks(argc, argv, print_summary); }
