@@ -98,6 +98,18 @@ FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options) {
     return report;
 }
 
+FlipReport flip_from(SurfaceMesh& mesh, std::span<const Edge> seeds, const FlipOptions& options) {
+    FlipReport report;
+    const auto t0 = Clock::now();
+    FlipQueue q(mesh, options.rule, options.feature_angle_deg, report);
+    for (Edge e : seeds)
+        if (e.is_valid() && e.idx() < mesh.edges_size() && !mesh.is_deleted(e)) q.push(e);
+    const std::size_t cap = flip_cap(options.max_flips_per_vertex, mesh.n_vertices());
+    q.run(cap, {}, [](Edge) { return true; }, [](Edge) {});
+    report.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return report;
+}
+
 namespace {
 
 /// Hop distances from V up to `limit` (BFS in the current edge graph).

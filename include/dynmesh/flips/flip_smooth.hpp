@@ -44,6 +44,12 @@ struct FlipReport {
 /// \pre mesh has no garbage (call garbage_collection() first). \throw InvalidInput otherwise.
 FlipReport flip_all(SurfaceMesh& mesh, const FlipOptions& options = {});
 
+/// Lawson propagation from a seed set: queues `seeds`, and after every flip the four outer
+/// edges of its quad, until the queue empties (no bound on the region). Unlike flip_all()
+/// the mesh may hold deleted elements (deleted seeds are skipped). options.progress is
+/// ignored; the cap is options.max_flips_per_vertex * n_vertices().
+FlipReport flip_from(SurfaceMesh& mesh, std::span<const Edge> seeds, const FlipOptions& options);
+
 struct LocalFlipOptions {
     FlipRule rule = FlipRule::AngleDef3;
     double feature_angle_deg = 180.0;  ///< as FlipOptions::feature_angle_deg

@@ -1,0 +1,254 @@
+#pragma once
+/// \file DeformingMesh: a surface mesh kept good while the surface deforms and is known only
+/// through moving samples (Cheng & Dey, "Maintaining deforming surface meshes", SODA 2008;
+/// digest `specs/deforming-mesh.md`).
+///
+/// Usage
+/// \code
+///   DeformParams params;  params.lambda = 1e-3;
+///   DeformingMesh dm(P0, params, {.surface = &sphere});   // t = 0
+///   for (int t = 1; t <= T; ++t) {
+///       auto step = dm.advance(t, positions_at(t));         // every integer time
+///       if (step.update_due) dm.update(t);                  // a time step: MeshUpdate
+///   }
+/// \endcode
+///
+/// Time is discrete. `advance(t, positions)` is called for every integer t with the position
+/// of every live sample (indexed by SampleId); the mesh vertices simply follow their samples.
+/// At a time step (t == next_step(), or when a motion monitor trips and emergency steps are
+/// on) `update(t)` runs the paper's MeshUpdate: RefineVert, then Insertion of the queued new
+/// samples, then Deletion of the queued ids, then schedules t2 = t + floor(R / (kappa lambda)).
+///
+/// Insertions and deletions: `queue_insertion()` gives the new sample its id at once, but the
+/// sample only joins P at the next update (the paper allows user edits at time steps only);
+/// until then the caller must still pass its position to advance(). `queue_deletion()` keeps
+/// the sample live until the next update.
+///
+/// Determinism: equal inputs give bit-identical results; ties break on SampleId.
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/shapes/surface.hpp"
+
+namespace dynmesh {
+
+/// Stable identifier of a sample: its index in the position table passed to advance().
+using SampleId = std::uint32_t;
+inline constexpr SampleId kNoSample = std::numeric_limits<SampleId>::max();
+
+/// The paper's step constant (certified bounds hold for kappa >= 468).
+inline constexpr double kPaperKappa = 468.0;
+/// The practical default: vertices move at most R/32 between updates (< 10 % of the
+/// shortest edge, which is >= R/3); justified by the kappa sweep in the README.
+inline constexpr double kPracticalKappa = 32.0;
+
+struct DeformParams {
+    /// Upper bound on how far any surface point moves in one time unit (> 0, required).
+    double lambda = 0;
+    /// Step constant: the next step is floor(R / (kappa * lambda)) time units later.
+    double kappa = kPracticalKappa;
+    /// The sampling radius h0 = eps(0) * gamma(0) of P(0). When unset it is estimated from
+    /// InitialSurface::surface (dense probes) or, failing that, from the initial mesh.
+    std::optional<double> h0;
+    /// Last time unit of interest: no step is scheduled after it.
+    int horizon = std::numeric_limits<int>::max();
+    /// Run an update at once when a motion monitor trips (a deviation from the paper that
+    /// keeps the mesh valid when the caller's motion breaks the model; logged).
+    bool emergency_steps = true;
+    /// Caps of the RefineVert and Deletion loops (reported when hit).
+    std::size_t refine_max_iters = 64;
+    std::size_t deletion_max_iters = 64;
+    /// Run RefineVert to a fixed point at t = 0 (not in the paper): the state at 0 is then
+    /// one that a rigid motion keeps, and the first steps do not pay for initialisation.
+    bool init_refine = true;
+    /// Spec §9 P7 (not in the paper): at the end of an update, when vertex pairs have come
+    /// closer than R/3 (old vertices under compression), remove one vertex of each such pair
+    /// (Decimation with radius R/3) and run RefineVert, so spacing >= R/3 holds at every step.
+    bool spacing_repair = true;
+    /// Number of probe points for estimating h0 from InitialSurface::surface.
+    std::size_t h0_probes = 200000;
+    std::uint64_t seed = 1;
+};
+
+/// What the library knows about Sigma(0) besides the samples (all optional).
+struct InitialSurface {
+    /// The surface itself: h0 is estimated by probing it, and Tri(0) is the restricted
+    /// Delaunay triangulation of Vert(0).
+    const ImplicitSurface* surface = nullptr;
+    /// A caller-supplied closed triangulation of Vert(0): mesh vertex i is sample
+    /// vertex_samples[i]. Without it (and without a surface) Tri(0) is reconstructed with
+    /// CGAL's advancing front.
+    const SurfaceMesh* mesh = nullptr;
+    std::vector<SampleId> vertex_samples;
+};
+
+/// Motion-model monitors and algorithm diagnostics (spec §9 P5). None is silent.
+enum class Violation {
+    DisplacementExceedsLambda,  ///< a sample moved more than lambda in one time unit
+    StepTooShort,               ///< floor(R / (kappa lambda)) = 0: the motion is too fast
+    EdgeAngleBelow90,           ///< an edge-angle dropped to <= 90 degrees between steps
+    NormalInverted,             ///< a triangle normal turned by more than 90 degrees
+    CircumradiusGrowth,         ///< R(t) exceeded the L3.6 bound times R at the last step
+    RefineCapHit,               ///< RefineVert hit refine_max_iters
+    DeletionCapHit,             ///< Deletion hit deletion_max_iters
+    AddVertexCase,              ///< Add found the sample on an existing vertex (kept dormant)
+    FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
+    RemoveFailed,               ///< a vertex removal found no valid re-triangulation
+    NonEmptyBall,               ///< a diametric ball still holds a vertex after flipping
+    Rebuild                     ///< the mesh was rebuilt from scratch to recover
+};
+[[nodiscard]] std::string_view to_string(Violation v);
+
+struct ViolationRecord {
+    int t = 0;
+    Violation kind = Violation::StepTooShort;
+    std::string detail;
+};
+
+/// Work done by one update (or accumulated over many).
+struct UpdateCounters {
+    std::size_t flips = 0;
+    std::size_t insertions = 0;  ///< Add operations (samples made vertices)
+    std::size_t removals = 0;    ///< Remove operations (vertices removed)
+    std::size_t dormant_moves = 0;
+    std::size_t refine_passes = 0;
+    std::size_t deletion_iterations = 0;
+    std::size_t flip_refusals = 0;    ///< flips refused by the circumradius guard (spec §9 P9)
+    std::size_t spacing_repairs = 0;  ///< updates that ran the spacing repair (spec §9 P7)
+    std::size_t samples_inserted = 0;  ///< user insertions applied
+    std::size_t samples_deleted = 0;   ///< user deletions applied
+    std::size_t distance_evals = 0;
+    double seconds = 0;
+    UpdateCounters& operator+=(const UpdateCounters& o);
+    [[nodiscard]] std::size_t changes() const { return flips + insertions + removals; }
+};
+
+struct UpdateReport {
+    int t = 0;
+    bool emergency = false;  ///< run because a monitor tripped, not because t was a step
+    UpdateCounters counters;
+    double R_before = 0, R_after = 0;  ///< largest circumradius at the start and the end
+    int next_step = 0;
+    std::size_t samples = 0, vertices = 0;
+    std::vector<ViolationRecord> violations;
+};
+
+struct StepReport {
+    int t = 0;
+    bool update_due = false;  ///< t is a time step (or an emergency update is requested)
+    bool emergency = false;   ///< update_due because a monitor tripped
+    double max_displacement = 0;  ///< largest sample displacement since the last time unit
+    double R = 0;                 ///< current largest circumradius
+    std::vector<ViolationRecord> violations;
+};
+
+struct InvariantOptions {
+    bool self_intersections = true;  ///< run the (n log n) self-intersection test
+    bool empty_balls = true;         ///< every diametric ball empty of vertices
+    /// Slack factors for checks that hold between steps only up to the L3.6 constants.
+    double radius_edge_bound = 3.0;  ///< every triangle's radius-edge ratio <= this
+    double spacing_factor = 1.0 / 3.0;  ///< every vertex pair >= spacing_factor * R
+    double dormant_factor = 1.25;       ///< every dormant point within dormant_factor * R
+};
+
+struct InvariantReport {
+    bool ok = true;
+    std::vector<std::string> failures;  ///< one line per failed check (with a location)
+    double R = 0;                       ///< largest circumradius
+    double min_spacing = 0;             ///< shortest vertex-vertex distance
+    double max_radius_edge = 0;
+    double max_dormant_distance = 0;    ///< over dormant points, distance to the owner
+    std::size_t nonempty_balls = 0;
+    std::size_t self_intersections = 0;
+    std::size_t samples = 0, vertices = 0, dormant = 0;
+};
+
+struct InitReport {
+    double h0 = 0;
+    bool h0_estimated = false;
+    std::size_t samples = 0, vertices = 0, faces = 0;
+    double R0 = 0;
+    int next_step = 0;
+    std::size_t init_flips = 0;
+    /// Samples made vertices by running RefineVert to a fixed point at t = 0 (not in the
+    /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps).
+    std::size_t init_insertions = 0;
+    double seconds = 0;
+};
+
+class DeformingMesh {
+public:
+    /// Initialisation at t = 0 (spec §4.1): h0, farthest-point Vert(0), dormant lists,
+    /// Tri(0), first step. positions[i] is sample i.
+    /// \throw InvalidInput for lambda <= 0 or non-finite, kappa <= 0, fewer than 4 samples,
+    ///        a non-finite position (naming the id), coincident samples, a sample set too
+    ///        sparse to mesh (the initial mesh is not a closed manifold), or an inconsistent
+    ///        InitialSurface::mesh.
+    DeformingMesh(std::span<const Point3> positions, const DeformParams& params,
+                  const InitialSurface& initial = {});
+    ~DeformingMesh();
+    DeformingMesh(DeformingMesh&&) noexcept;
+    DeformingMesh& operator=(DeformingMesh&&) noexcept;
+
+    [[nodiscard]] const InitReport& init_report() const;
+
+    /// Moves every live sample to positions[id] at integer time t (> the last t). The size of
+    /// positions must be at least id_capacity(); entries of deleted ids are ignored.
+    /// Runs the motion monitors. \throw InvalidInput for a short table, t not increasing, or
+    /// a non-finite position of a live sample (naming the id).
+    StepReport advance(int t, std::span<const Point3> positions);
+
+    /// MeshUpdate at the current time (the t of the last advance(), or 0): RefineVert,
+    /// Insertion of the queued samples, Deletion of the queued ids, next step. May be called
+    /// early (correct, but voids the optimality of the schedule).
+    UpdateReport update();
+
+    /// Queues a new sample at p (current time); returns its id. It joins P at the next update.
+    SampleId queue_insertion(const Point3& p);
+    /// Queues the deletion of a live sample. \throw InvalidInput for an unknown or dead id.
+    void queue_deletion(SampleId id);
+
+    [[nodiscard]] int time() const;
+    [[nodiscard]] int next_step() const;
+    [[nodiscard]] double lambda() const;
+    [[nodiscard]] const DeformParams& params() const;
+
+    [[nodiscard]] const SurfaceMesh& mesh() const;
+    /// The sample a mesh vertex is (kNoSample for an invalid vertex).
+    [[nodiscard]] SampleId sample_of(Vertex v) const;
+    /// The mesh vertex of a sample, or an invalid handle when it is dormant or dead.
+    [[nodiscard]] Vertex vertex_of(SampleId id) const;
+    /// For a dormant sample: the sample id of its owning vertex; kNoSample otherwise.
+    [[nodiscard]] SampleId owner_of(SampleId id) const;
+    /// One past the largest id handed out (position tables must be at least this long).
+    [[nodiscard]] std::size_t id_capacity() const;
+    [[nodiscard]] bool is_live(SampleId id) const;
+    [[nodiscard]] std::size_t live_samples() const;
+    [[nodiscard]] double max_circumradius() const;
+    /// Every violation recorded so far.
+    [[nodiscard]] const std::vector<ViolationRecord>& violations() const;
+    /// Totals over all updates.
+    [[nodiscard]] const UpdateCounters& totals() const;
+    [[nodiscard]] std::size_t updates() const;
+
+    /// The invariants of the paper computable from the samples (spec §3, §8.2): mesh
+    /// validity (closed oriented manifold, Euler characteristic unchanged), radius-edge
+    /// ratios, spacing >= R/3, dormant lists partition P \ Vert with every dormant point
+    /// within 5R/4 of its owner, empty diametric balls, no self-intersection.
+    [[nodiscard]] InvariantReport check_invariants(const InvariantOptions& options = {}) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dynmesh

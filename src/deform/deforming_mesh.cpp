@@ -1,0 +1,1010 @@
+#include "dynmesh/deform/deforming_mesh.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <unordered_set>
+
+#include "dynmesh/deform/local_ops.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/flips/flip_smooth.hpp"
+#include "dynmesh/geometry/point_grid.hpp"
+#include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/metrics/self_intersection.hpp"
+#include "dynmesh/reconstruct/advancing_front.hpp"
+#include "dynmesh/reconstruct/restricted_delaunay.hpp"
+
+namespace dynmesh {
+
+using Clock = std::chrono::steady_clock;
+
+std::string_view to_string(Violation v) {
+    switch (v) {
+        case Violation::DisplacementExceedsLambda: return "displacement_exceeds_lambda";
+        case Violation::StepTooShort: return "step_too_short";
+        case Violation::EdgeAngleBelow90: return "edge_angle_below_90";
+        case Violation::NormalInverted: return "normal_inverted";
+        case Violation::CircumradiusGrowth: return "circumradius_growth";
+        case Violation::RefineCapHit: return "refine_cap_hit";
+        case Violation::DeletionCapHit: return "deletion_cap_hit";
+        case Violation::AddVertexCase: return "add_vertex_case";
+        case Violation::FarSample: return "far_sample";
+        case Violation::RemoveFailed: return "remove_failed";
+        case Violation::NonEmptyBall: return "non_empty_ball";
+        case Violation::Rebuild: return "rebuild";
+    }
+    return "unknown";
+}
+
+UpdateCounters& UpdateCounters::operator+=(const UpdateCounters& o) {
+    flips += o.flips;
+    insertions += o.insertions;
+    removals += o.removals;
+    dormant_moves += o.dormant_moves;
+    refine_passes += o.refine_passes;
+    deletion_iterations += o.deletion_iterations;
+    spacing_repairs += o.spacing_repairs;
+    flip_refusals += o.flip_refusals;
+    samples_inserted += o.samples_inserted;
+    samples_deleted += o.samples_deleted;
+    distance_evals += o.distance_evals;
+    seconds += o.seconds;
+    return *this;
+}
+
+namespace {
+
+enum class State : std::uint8_t { Dead, Pending, Dormant, Vertex };
+
+/// L3.6's bound on R(t) / R(t1) between steps, for kappa > 348; a practical monitor
+/// threshold (2) below that, where the lemma gives no bound.
+double growth_bound(double kappa) {
+    if (kappa > 348.0) return (kappa * kappa - 144.0) / (kappa * (kappa - 348.0));
+    return 2.0;
+}
+
+std::string id_str(SampleId id) { return "sample " + std::to_string(id); }
+
+}  // namespace
+
+struct DeformingMesh::Impl {
+    DeformParams params;
+    InitReport init;
+    std::vector<Point3> pos;
+    std::vector<State> state;
+    std::vector<SampleId> owner;            ///< for a dormant sample: its owner's id
+    std::vector<std::vector<SampleId>> dl;  ///< dormant list of a vertex sample
+    std::vector<std::uint32_t> dpos;        ///< index of a dormant sample in its owner's list
+    std::vector<Vertex> vert_of;
+    SurfaceMesh mesh;
+    VertexProperty<SampleId> vsample;
+    std::vector<SampleId> pending_insert;
+    std::vector<SampleId> pending_delete;
+    std::vector<char> marked;  ///< samples to delete (during Deletion)
+    long long euler = 2;
+    int t = 0;
+    int next = 0;
+    double R_last = 0;
+    std::vector<Vec3> ref_normals;  ///< face normals at the end of the last update
+    std::vector<ViolationRecord> violations;
+    std::vector<ViolationRecord> pending_violations;  ///< collected during one call
+    UpdateCounters totals;
+    UpdateCounters cur;
+    std::size_t n_updates = 0;
+    bool emergency_requested = false;
+    std::size_t folded_at_step = 0;  ///< edges with edge-angle <= 90 at the end of the last update
+    std::size_t live = 0;
+
+    // ---- small helpers --------------------------------------------------------------------
+    void violation(Violation kind, std::string detail) {
+        ViolationRecord r{t, kind, std::move(detail)};
+        violations.push_back(r);
+        pending_violations.push_back(std::move(r));
+    }
+    [[nodiscard]] SampleId sid(Vertex v) const { return vsample[v]; }
+    [[nodiscard]] const Point3& P(SampleId s) const { return pos[s]; }
+
+    void grow(std::size_t n) {
+        pos.resize(n);
+        state.resize(n, State::Dead);
+        owner.resize(n, kNoSample);
+        dl.resize(n);
+        dpos.resize(n, 0);
+        vert_of.resize(n);
+        marked.resize(n, 0);
+    }
+
+    void attach(SampleId p, SampleId w) {
+        state[p] = State::Dormant;
+        owner[p] = w;
+        dpos[p] = static_cast<std::uint32_t>(dl[w].size());
+        dl[w].push_back(p);
+        ++cur.dormant_moves;
+    }
+    void detach(SampleId p) {
+        auto& list = dl[owner[p]];
+        const std::uint32_t i = dpos[p];
+        list[i] = list.back();
+        dpos[list[i]] = i;
+        list.pop_back();
+        owner[p] = kNoSample;
+    }
+    void make_vertex(SampleId s, Vertex v) {
+        state[s] = State::Vertex;
+        owner[s] = kNoSample;
+        vert_of[s] = v;
+        vsample[v] = s;
+    }
+
+    [[nodiscard]] double max_circumradius() const {
+        double R = 0;
+        for (Face f : mesh.faces()) {
+            const auto vs = mesh.face_vertices(f);
+            R = std::max(R, circumradius(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2])));
+        }
+        return R;
+    }
+
+    /// Grid of the current vertices (ids = sample ids).
+    PointGrid vertex_grid(double cell) const {
+        PointGrid g(cell);
+        for (Vertex v : mesh.vertices()) g.insert(sid(v), mesh.position(v));
+        return g;
+    }
+
+    /// The face nearest to p, among the faces around vertices within search radius r
+    /// (growing), falling back to all faces.
+    Face nearest_face(const Point3& p, const PointGrid& grid, double r, double* dist) {
+        Face best;
+        double bd = std::numeric_limits<double>::infinity();
+        auto consider = [&](Face f) {
+            const auto vs = mesh.face_vertices(f);
+            const ClosestPoint cp = closest_point_on_triangle(p, mesh.position(vs[0]), mesh.position(vs[1]),
+                                                              mesh.position(vs[2]));
+            ++cur.distance_evals;
+            if (cp.distance < bd || (cp.distance == bd && f.idx() < best.idx())) {
+                bd = cp.distance;
+                best = f;
+            }
+        };
+        for (int round = 0; round < 4 && !best.is_valid(); ++round, r *= 2) {
+            grid.for_each_candidate(p, r, [&](std::uint32_t s) {
+                if (state[s] != State::Vertex) return;
+                const Vertex v = vert_of[s];
+                if (distance(mesh.position(v), p) > r) return;
+                for (Halfedge h : mesh.outgoing_halfedges(v))
+                    if (mesh.face(h).is_valid()) consider(mesh.face(h));
+            });
+        }
+        if (!best.is_valid())
+            for (Face f : mesh.faces()) consider(f);
+        if (dist) *dist = bd;
+        return best;
+    }
+
+    /// Makes sample p a vertex with Add (or keeps it dormant when Add refuses). The grid gets
+    /// the new vertex.
+    void add_sample(SampleId p, PointGrid& grid, double R) {
+        double d = 0;
+        const Face f = nearest_face(P(p), grid, 2 * R, &d);
+        DYNMESH_ASSERT(f.is_valid(), "add_sample: no face");
+        if (d > 2 * R) {
+            const auto [w, dw] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
+                                              [&](std::uint32_t s) { return state[s] == State::Vertex; });
+            violation(Violation::FarSample, id_str(p) + " is " + std::to_string(d) +
+                                                " from the mesh (R = " + std::to_string(R) + "); kept dormant");
+            attach(p, w);
+            return;
+        }
+        const AddResult r = add_point(mesh, P(p), f);
+        cur.flips += r.flips;
+        if (r.kind == AddCase::Vertex) {
+            violation(Violation::AddVertexCase, id_str(p) + " falls on the vertex of " + id_str(sid(r.near_vertex)));
+            attach(p, sid(r.near_vertex));
+            return;
+        }
+        ++cur.insertions;
+        make_vertex(p, r.vertex);
+        grid.insert(p, P(p));
+    }
+
+    /// Remove(vertex of sample s). On success the sample is no longer a vertex (state Dead;
+    /// the caller decides what it becomes) and leaves the grid.
+    bool remove_sample(SampleId s, PointGrid* grid) {
+        const Vertex v = vert_of[s];
+        const RemoveResult r = remove_point(mesh, v);
+        cur.flips += r.flips;
+        if (!r.removed) {
+            violation(Violation::RemoveFailed, "vertex of " + id_str(s) + ": " + r.reason);
+            return false;
+        }
+        ++cur.removals;
+        if (grid) grid->erase(s, P(s));
+        vert_of[s] = Vertex();
+        state[s] = State::Dead;
+        return true;
+    }
+
+    std::vector<Edge> all_edges() const {
+        std::vector<Edge> e;
+        e.reserve(mesh.n_edges());
+        for (Edge x : mesh.edges()) e.push_back(x);
+        return e;
+    }
+    void global_flip() {
+        FlipOptions fo;
+        fo.rule = FlipRule::DiametricBall;
+        const auto edges = all_edges();
+        const FlipReport r = flip_from(mesh, edges, fo);
+        cur.flips += r.flips;
+        cur.flip_refusals += r.not_improving;
+        if (!r.converged)
+            violation(Violation::NonEmptyBall, "global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
+    }
+
+    // ---- RefineVert (§4.5) ------------------------------------------------------------------
+    void refine_vert() {
+        for (std::size_t pass = 0;; ++pass) {
+            if (pass >= params.refine_max_iters) {
+                violation(Violation::RefineCapHit, "RefineVert stopped after " + std::to_string(pass) + " passes");
+                return;
+            }
+            const double R = max_circumradius();
+            std::vector<SampleId> S;
+            for (SampleId p = 0; p < state.size(); ++p) {
+                if (state[p] != State::Dormant) continue;
+                ++cur.distance_evals;
+                if (distance(P(p), P(owner[p])) > R / 3) {
+                    detach(p);
+                    state[p] = State::Pending;
+                    S.push_back(p);
+                }
+            }
+            ++cur.refine_passes;
+            if (!S.empty()) {
+                PointGrid grid = vertex_grid(R);
+                place(S, grid, R);
+            }
+            global_flip();
+            if (max_circumradius() > 2 * R / 3) return;
+        }
+    }
+
+    /// Step (c) of RefineVert and the loop of Insertion: each sample becomes dormant at the
+    /// nearest vertex when one is within R/3, or a vertex.
+    void place(const std::vector<SampleId>& S, PointGrid& grid, double R) {
+        for (SampleId p : S) {
+            const auto [w, d] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
+                                             [&](std::uint32_t s) { return state[s] == State::Vertex; });
+            ++cur.distance_evals;
+            if (w != kNoSample && d <= R / 3)
+                attach(p, w);
+            else
+                add_sample(p, grid, R);
+        }
+    }
+
+    // ---- Insertion (§4.6) -------------------------------------------------------------------
+    void insertion() {
+        if (pending_insert.empty()) return;
+        std::vector<SampleId> S = std::move(pending_insert);
+        pending_insert.clear();
+        std::sort(S.begin(), S.end());
+        const double R = max_circumradius();
+        PointGrid grid = vertex_grid(R);
+        place(S, grid, R);
+        cur.samples_inserted += S.size();
+        refine_vert();
+    }
+
+    // ---- Deletion (§4.7) --------------------------------------------------------------------
+    void deletion() {
+        if (pending_delete.empty()) return;
+        std::vector<SampleId> D = std::move(pending_delete);
+        pending_delete.clear();
+        std::sort(D.begin(), D.end());
+        D.erase(std::unique(D.begin(), D.end()), D.end());
+        std::size_t n_marked = 0;
+        for (SampleId s : D)
+            if (state[s] == State::Dormant || state[s] == State::Vertex) {
+                marked[s] = 1;
+                ++n_marked;
+            }
+        for (std::size_t iter = 0; n_marked > 0; ++iter) {
+            if (iter >= params.deletion_max_iters) {
+                violation(Violation::DeletionCapHit, std::to_string(n_marked) + " samples still to delete after " +
+                                                         std::to_string(iter) + " iterations; queued again");
+                for (SampleId s = 0; s < marked.size(); ++s)
+                    if (marked[s]) {
+                        marked[s] = 0;
+                        pending_delete.push_back(s);
+                    }
+                return;
+            }
+            ++cur.deletion_iterations;
+            // 1. marked dormant samples leave P
+            for (SampleId s = 0; s < marked.size(); ++s)
+                if (marked[s] && state[s] == State::Dormant) {
+                    detach(s);
+                    kill(s, n_marked);
+                }
+            const std::size_t before = n_marked;
+            user_deletion(n_marked);
+            decimation();
+            refine_vert();
+            if (n_marked == before && !any_marked_dormant()) {
+                // Marked vertices that no Remove could take out: try again next step.
+                for (SampleId s = 0; s < marked.size(); ++s)
+                    if (marked[s]) {
+                        marked[s] = 0;
+                        pending_delete.push_back(s);
+                    }
+                return;
+            }
+        }
+    }
+    bool any_marked_dormant() const {
+        for (SampleId s = 0; s < marked.size(); ++s)
+            if (marked[s] && state[s] == State::Dormant) return true;
+        return false;
+    }
+    void kill(SampleId s, std::size_t& n_marked) {
+        state[s] = State::Dead;
+        owner[s] = kNoSample;
+        vert_of[s] = Vertex();
+        if (marked[s]) {
+            marked[s] = 0;
+            --n_marked;
+        }
+        ++cur.samples_deleted;
+        --live;
+    }
+
+    void user_deletion(std::size_t& n_marked) {
+        const double R = max_circumradius();
+        PointGrid grid = vertex_grid(R);
+        std::vector<SampleId> mv;
+        for (Vertex v : mesh.vertices())
+            if (marked[sid(v)]) mv.push_back(sid(v));
+        std::sort(mv.begin(), mv.end());
+        auto is_vertex = [&](std::uint32_t s) { return state[s] == State::Vertex; };
+        auto posf = [&](std::uint32_t s) { return P(s); };
+        for (SampleId v : mv) {
+            if (state[v] != State::Vertex || !marked[v]) continue;
+            std::vector<SampleId> S1, S2;
+            grid.for_each_candidate(P(v), 4 * R, [&](std::uint32_t w) {
+                if (state[w] != State::Vertex || !marked[w]) return;
+                const double d = distance(P(w), P(v));
+                ++cur.distance_evals;
+                if (d <= 2 * R)
+                    S1.push_back(w);
+                else if (d <= 4 * R)
+                    S2.push_back(w);
+            });
+            std::sort(S1.begin(), S1.end());
+            std::sort(S2.begin(), S2.end());
+            const auto [u, du] = grid.nearest(P(v), posf, [&](std::uint32_t s) { return is_vertex(s) && !marked[s]; });
+            const bool has_u = u != kNoSample && du <= 4 * R;
+            SampleId wstar = kNoSample;
+            for (SampleId w : S1)
+                if (!dl[w].empty()) {
+                    wstar = w;
+                    break;
+                }
+            if (!has_u && wstar == kNoSample) {
+                for (SampleId w : S1)
+                    if (remove_sample(w, &grid)) kill_vertex_sample(w, n_marked);
+                return;
+            }
+            std::vector<SampleId> gone;
+            for (const auto* S : {&S1, &S2})
+                for (SampleId w : *S)
+                    if (remove_sample(w, &grid)) gone.push_back(w);
+            std::vector<SampleId> orphans;
+            for (SampleId w : gone) {
+                for (SampleId p : dl[w]) orphans.push_back(p);
+                dl[w].clear();
+                kill_vertex_sample(w, n_marked);
+            }
+            std::sort(orphans.begin(), orphans.end());
+            if (has_u) {
+                for (SampleId p : orphans) attach(p, u);
+            } else if (!orphans.empty()) {
+                const SampleId q = orphans.front();
+                state[q] = State::Pending;
+                add_sample(q, grid, R);
+                const SampleId to = state[q] == State::Vertex ? q : owner[q];
+                for (std::size_t i = 1; i < orphans.size(); ++i) attach(orphans[i], to);
+            }
+        }
+    }
+    void kill_vertex_sample(SampleId w, std::size_t& n_marked) {
+        if (!marked[w]) return;  // a removed vertex that was not marked stays a sample
+        kill(w, n_marked);
+    }
+
+    /// Decimation of §4.7 (factor 1/2). With factor 1/3 it is the spacing repair of §9 P7.
+    /// Returns the number of vertices it removed.
+    std::size_t decimation(double factor = 0.5) {
+        const double R = max_circumradius();
+        const double rad = factor * R;
+        PointGrid grid = vertex_grid(R);
+        std::vector<SampleId> vs;
+        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+        std::sort(vs.begin(), vs.end());
+        std::vector<char> black(state.size(), 0);
+        for (SampleId v : vs) {
+            if (black[v]) continue;
+            grid.for_each_candidate(P(v), rad, [&](std::uint32_t w) {
+                if (w == v || state[w] != State::Vertex) return;
+                ++cur.distance_evals;
+                if (distance(P(w), P(v)) < rad) black[w] = 1;
+            });
+        }
+        PointGrid white(R);
+        std::vector<SampleId> blacks;
+        for (SampleId v : vs) (black[v] ? blacks.push_back(v) : white.insert(v, P(v)));
+        if (blacks.empty()) return 0;
+        auto posf = [&](std::uint32_t s) { return P(s); };
+        std::size_t removed = 0;
+        for (SampleId u : blacks) {
+            if (mesh.n_vertices() <= 4) break;
+            std::vector<SampleId> moving = dl[u];
+            dl[u].clear();
+            if (!remove_sample(u, nullptr)) {
+                dl[u] = std::move(moving);
+                for (std::uint32_t i = 0; i < dl[u].size(); ++i) dpos[dl[u][i]] = i;
+                continue;
+            }
+            ++removed;
+            moving.push_back(u);
+            for (SampleId p : moving) {
+                const auto [w, d] = white.nearest(P(p), posf, [](std::uint32_t) { return true; });
+                ++cur.distance_evals;
+                attach(p, w);
+            }
+        }
+        return removed;
+    }
+
+    /// §9 P7 (not in the paper): vertex pairs that came closer than R/3 (old vertices under
+    /// compression) lose one vertex, then RefineVert restores the density.
+    void spacing_repair() {
+        if (!params.spacing_repair) return;
+        if (decimation(1.0 / 3.0) > 0) {
+            ++cur.spacing_repairs;
+            refine_vert();
+        }
+    }
+
+    // ---- MeshUpdate ---------------------------------------------------------------------------
+    void schedule() {
+        const double R = max_circumradius();
+        const double steps = std::floor(R / (params.kappa * params.lambda));
+        int delta = 1;
+        if (!(steps >= 1)) {
+            violation(Violation::StepTooShort, "floor(R / (kappa lambda)) = 0 with R = " + std::to_string(R) +
+                                                   ", kappa = " + std::to_string(params.kappa) +
+                                                   ", lambda = " + std::to_string(params.lambda) +
+                                                   ": the motion is too fast for this sampling; updating every unit");
+        } else {
+            delta = static_cast<int>(std::min(steps, 1e9));
+        }
+        const long long nx = static_cast<long long>(t) + delta;
+        next = static_cast<int>(std::min<long long>(nx, std::max(params.horizon, t + 1)));
+        R_last = R;
+    }
+
+    void finish_update() {
+        mesh.garbage_collection();
+        std::fill(vert_of.begin(), vert_of.end(), Vertex());
+        for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
+        folded_at_step = folded_edges();
+        ref_normals.assign(mesh.faces_size(), Vec3{});
+        for (Face f : mesh.faces()) {
+            const auto vs = mesh.face_vertices(f);
+            ref_normals[f.idx()] = triangle_normal(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2]));
+        }
+    }
+
+    /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90).
+    std::size_t folded_edges() const {
+        std::size_t n = 0;
+        for (Edge e : mesh.edges()) {
+            const Face f0 = mesh.face(SurfaceMesh::halfedge(e, 0)), f1 = mesh.face(SurfaceMesh::halfedge(e, 1));
+            if (!f0.is_valid() || !f1.is_valid()) continue;
+            if (dot(face_normal(f0), face_normal(f1)) <= 0) ++n;
+        }
+        return n;
+    }
+    Vec3 face_normal(Face f) const {
+        const auto vs = mesh.face_vertices(f);
+        return triangle_normal_raw(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2]));
+    }
+
+    /// Rebuilds Tri from the current vertex positions (advancing front), every other live
+    /// sample dormant at its nearest vertex.
+    void rebuild() {
+        std::vector<SampleId> vs;
+        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+        std::sort(vs.begin(), vs.end());
+        std::vector<Point3> pts;
+        for (SampleId s : vs) pts.push_back(P(s));
+        AdvancingFrontResult af;
+        try {
+            af = reconstruct_advancing_front_with_report(pts);
+        } catch (const Error& e) {
+            violation(Violation::Rebuild, std::string("rebuild failed, mesh kept: ") + e.what());
+            return;
+        }
+        std::vector<SampleId> vsamples;
+        for (std::uint32_t i : af.report.vertex_sample) vsamples.push_back(vs[i]);
+        install_mesh(std::move(af.mesh), vsamples);
+        violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
+    }
+
+    /// Makes `m` (vertex i = sample vs[i]) the mesh; every other live sample becomes dormant
+    /// at its nearest vertex.
+    void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
+        mesh = std::move(m);
+        vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
+        for (SampleId s = 0; s < state.size(); ++s) {
+            dl[s].clear();
+            vert_of[s] = Vertex();
+            owner[s] = kNoSample;
+            if (state[s] == State::Vertex || state[s] == State::Dormant) state[s] = State::Pending;
+        }
+        std::uint32_t i = 0;
+        for (Vertex v : mesh.vertices()) make_vertex(vs[i++], v);
+        double L = 0;
+        for (Edge e : mesh.edges()) L = std::max(L, distance(mesh.position(mesh.vertex(e, 0)), mesh.position(mesh.vertex(e, 1))));
+        PointGrid grid = vertex_grid(std::max(L, 1e-300));
+        auto posf = [&](std::uint32_t s) { return P(s); };
+        for (SampleId s = 0; s < state.size(); ++s) {
+            if (state[s] != State::Pending || is_pending_insert(s)) continue;
+            const auto [w, d] = grid.nearest(P(s), posf, [&](std::uint32_t x) { return state[x] == State::Vertex; });
+            attach(s, w);
+        }
+    }
+    bool is_pending_insert(SampleId s) const {
+        return std::binary_search(pending_sorted.begin(), pending_sorted.end(), s);
+    }
+    std::vector<SampleId> pending_sorted;
+};
+
+// ---- construction ---------------------------------------------------------------------------
+
+DeformingMesh::~DeformingMesh() = default;
+DeformingMesh::DeformingMesh(DeformingMesh&&) noexcept = default;
+DeformingMesh& DeformingMesh::operator=(DeformingMesh&&) noexcept = default;
+
+DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformParams& params,
+                             const InitialSurface& initial)
+    : impl_(std::make_unique<Impl>()) {
+    const auto t0 = Clock::now();
+    Impl& I = *impl_;
+    if (!(std::isfinite(params.lambda) && params.lambda > 0))
+        throw InvalidInput("deform: lambda (the displacement bound per time unit) must be positive and finite, got " +
+                           std::to_string(params.lambda));
+    if (!(std::isfinite(params.kappa) && params.kappa > 0))
+        throw InvalidInput("deform: kappa must be positive and finite, got " + std::to_string(params.kappa));
+    if (params.h0 && !(std::isfinite(*params.h0) && *params.h0 > 0))
+        throw InvalidInput("deform: h0 must be positive and finite, got " + std::to_string(*params.h0));
+    if (positions.size() < 4)
+        throw InvalidInput("deform: at least 4 samples are needed, got " + std::to_string(positions.size()));
+    if (positions.size() >= kNoSample) throw InvalidInput("deform: too many samples");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!is_finite(positions[i]))
+            throw InvalidInput("deform: sample " + std::to_string(i) + " has a non-finite coordinate");
+    I.params = params;
+    I.grow(positions.size());
+    std::copy(positions.begin(), positions.end(), I.pos.begin());
+    std::fill(I.state.begin(), I.state.end(), State::Pending);
+    I.live = positions.size();
+    {   // coincident samples
+        std::vector<std::uint32_t> order(positions.size());
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+            const Point3 &p = positions[a], &q = positions[b];
+            if (p.x != q.x) return p.x < q.x;
+            if (p.y != q.y) return p.y < q.y;
+            if (p.z != q.z) return p.z < q.z;
+            return a < b;
+        });
+        for (std::size_t i = 1; i < order.size(); ++i)
+            if (positions[order[i]] == positions[order[i - 1]])
+                throw InvalidInput("deform: samples " + std::to_string(order[i - 1]) + " and " +
+                                   std::to_string(order[i]) + " coincide");
+    }
+
+    // 1. h0
+    double h0 = 0;
+    if (params.h0) {
+        h0 = *params.h0;
+    } else if (initial.surface != nullptr) {
+        const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed);
+        const Bbox3 bb = initial.surface->bbox();
+        const double diag = distance(bb.min, bb.max);
+        const double cell = std::max(diag * std::sqrt(1.0 / static_cast<double>(positions.size())), 1e-12);
+        PointGrid g(cell);
+        for (std::uint32_t i = 0; i < positions.size(); ++i) g.insert(i, positions[i]);
+        auto posf = [&](std::uint32_t s) { return positions[s]; };
+        for (const Point3& q : probes)
+            h0 = std::max(h0, g.nearest(q, posf, [](std::uint32_t) { return true; }).second);
+        I.init.h0_estimated = true;
+    } else if (initial.mesh != nullptr) {
+        double R = 0;
+        for (Face f : initial.mesh->faces()) {
+            const auto vs = initial.mesh->face_vertices(f);
+            R = std::max(R, circumradius(initial.mesh->position(vs[0]), initial.mesh->position(vs[1]),
+                                         initial.mesh->position(vs[2])));
+        }
+        h0 = R;
+        I.init.h0_estimated = true;
+    } else {
+        const SurfaceMesh m = reconstruct_advancing_front(positions);
+        double R = 0;
+        for (Face f : m.faces()) {
+            const auto vs = m.face_vertices(f);
+            R = std::max(R, circumradius(m.position(vs[0]), m.position(vs[1]), m.position(vs[2])));
+        }
+        h0 = R;
+        I.init.h0_estimated = true;
+    }
+    if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
+    I.init.h0 = h0;
+
+    // 2. Vert(0), and 4. Tri(0)
+    std::vector<SampleId> vs;
+    if (initial.mesh != nullptr) {
+        const SurfaceMesh& m = *initial.mesh;
+        if (initial.vertex_samples.size() != m.vertices_size())
+            throw InvalidInput("deform: the initial mesh has " + std::to_string(m.vertices_size()) +
+                               " vertices but " + std::to_string(initial.vertex_samples.size()) + " sample ids");
+        std::vector<char> seen(positions.size(), 0);
+        for (SampleId s : initial.vertex_samples) {
+            if (s >= positions.size()) throw InvalidInput("deform: initial mesh vertex names unknown " + id_str(s));
+            if (seen[s]) throw InvalidInput("deform: initial mesh uses " + id_str(s) + " twice");
+            seen[s] = 1;
+        }
+        require_valid_mesh(m, "deform: the initial mesh", MeshCheckOptions{.require_closed = true});
+        SurfaceMesh copy = m;
+        for (Vertex v : copy.vertices()) copy.position(v) = positions[initial.vertex_samples[v.idx()]];
+        vs = initial.vertex_samples;
+        I.install_mesh(std::move(copy), vs);
+    } else {
+        PointGrid g(h0);
+        auto posf = [&](std::uint32_t s) { return positions[s]; };
+        for (SampleId s = 0; s < positions.size(); ++s) {
+            bool close = false;
+            g.for_each_candidate(positions[s], h0, [&](std::uint32_t w) {
+                if (!close && distance(positions[w], positions[s]) < h0) close = true;
+            });
+            if (!close) {
+                g.insert(s, positions[s]);
+                vs.push_back(s);
+            }
+        }
+        (void)posf;
+        std::vector<Point3> pts;
+        for (SampleId s : vs) pts.push_back(positions[s]);
+        if (pts.size() < 4)
+            throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(pts.size()) +
+                               " samples are at least h0 = " + std::to_string(h0) + " apart");
+        SurfaceMesh m;
+        std::vector<std::uint32_t> used;
+        try {
+            if (initial.surface != nullptr) {
+                auto r = restricted_delaunay_with_report(pts, *initial.surface);
+                m = std::move(r.mesh);
+                used = std::move(r.report.vertex_sample);
+            } else {
+                auto r = reconstruct_advancing_front_with_report(pts);
+                m = std::move(r.mesh);
+                used = std::move(r.report.vertex_sample);
+            }
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(std::string("deform: the sample set is too sparse to mesh (") + e.what() + ")");
+        }
+        if (used.size() != pts.size())
+            throw InvalidInput("deform: the sample set is too sparse to mesh: " +
+                               std::to_string(pts.size() - used.size()) + " of " + std::to_string(pts.size()) +
+                               " chosen vertices are in no triangle of the initial mesh");
+        std::vector<SampleId> mapped;
+        for (std::uint32_t i : used) mapped.push_back(vs[i]);
+        I.install_mesh(std::move(m), mapped);
+    }
+    {
+        const auto rep = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
+        if (!rep.ok())
+            throw InvalidInput("deform: the initial mesh is not a closed manifold (the sample set may be too sparse):\n" +
+                               rep.summary("  "));
+        I.euler = rep.euler;
+    }
+    I.global_flip();
+    // Not in the paper: RefineVert until nothing changes, so that the first steps do not pay
+    // for the initialisation (and a rigid motion then needs no change at all, spec §8.8).
+    for (int round = 0; round < (params.init_refine ? 16 : 0); ++round) {
+        const std::size_t before = I.cur.insertions;
+        I.refine_vert();
+        if (I.cur.insertions == before) break;
+    }
+    I.init.init_flips = I.cur.flips;
+    I.init.init_insertions = I.cur.insertions;
+    I.cur = {};
+    I.schedule();
+    I.finish_update();
+    I.init.samples = positions.size();
+    I.init.vertices = I.mesh.n_vertices();
+    I.init.faces = I.mesh.n_faces();
+    I.init.R0 = I.R_last;
+    I.init.next_step = I.next;
+    I.init.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    I.pending_violations.clear();
+}
+
+const InitReport& DeformingMesh::init_report() const { return impl_->init; }
+
+// ---- time ----------------------------------------------------------------------------------
+
+StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
+    Impl& I = *impl_;
+    I.pending_violations.clear();
+    if (t <= I.t)
+        throw InvalidInput("deform: advance(t = " + std::to_string(t) + ") after time " + std::to_string(I.t) +
+                           ": time must increase");
+    if (positions.size() < I.pos.size())
+        throw InvalidInput("deform: the position table has " + std::to_string(positions.size()) +
+                           " entries but sample ids go up to " + std::to_string(I.pos.size() - 1));
+    for (SampleId s = 0; s < I.pos.size(); ++s)
+        if (I.state[s] != State::Dead && !is_finite(positions[s]))
+            throw InvalidInput("deform: sample " + std::to_string(s) + " has a non-finite position at t = " +
+                               std::to_string(t));
+    StepReport rep;
+    rep.t = t;
+    const int dt = t - I.t;
+    I.t = t;
+    double maxd = 0;
+    SampleId worst = kNoSample;
+    for (SampleId s = 0; s < I.pos.size(); ++s) {
+        if (I.state[s] == State::Dead) continue;
+        const double d = distance(positions[s], I.pos[s]);
+        if (d > maxd) {
+            maxd = d;
+            worst = s;
+        }
+        I.pos[s] = positions[s];
+    }
+    for (Vertex v : I.mesh.vertices()) I.mesh.position(v) = I.pos[I.sid(v)];
+    rep.max_displacement = maxd;
+    bool trip = false;
+    if (maxd > I.params.lambda * dt * (1 + 1e-9)) {
+        I.violation(Violation::DisplacementExceedsLambda,
+                    id_str(worst) + " moved " + std::to_string(maxd) + " > lambda = " + std::to_string(I.params.lambda) +
+                        (dt > 1 ? " x " + std::to_string(dt) + " units" : ""));
+        trip = true;
+    }
+    rep.R = I.max_circumradius();
+    const double bound = growth_bound(I.params.kappa);
+    if (rep.R > bound * I.R_last) {
+        I.violation(Violation::CircumradiusGrowth, "R = " + std::to_string(rep.R) + " > " + std::to_string(bound) +
+                                                       " x R at the last step (" + std::to_string(I.R_last) + ")");
+        trip = true;
+    }
+    std::size_t inverted = 0;
+    Face first_inv;
+    for (Face f : I.mesh.faces())
+        if (f.idx() < I.ref_normals.size() && dot(I.face_normal(f), I.ref_normals[f.idx()]) <= 0) {
+            if (inverted++ == 0) first_inv = f;
+        }
+    if (inverted > 0) {
+        const auto vs = I.mesh.face_vertices(first_inv);
+        I.violation(Violation::NormalInverted, std::to_string(inverted) + " triangle normals turned by >= 90 degrees, e.g. (" +
+                                                   std::to_string(I.sid(vs[0])) + ", " + std::to_string(I.sid(vs[1])) + ", " +
+                                                   std::to_string(I.sid(vs[2])) + ")");
+        trip = true;
+    }
+    if (const std::size_t folded = I.folded_edges(); folded > I.folded_at_step) {
+        I.violation(Violation::EdgeAngleBelow90, std::to_string(folded) + " edges with an edge-angle <= 90 degrees (" +
+                                                     std::to_string(I.folded_at_step) + " at the last step)");
+        trip = true;
+    }
+    rep.emergency = trip && I.params.emergency_steps && t < I.next;
+    I.emergency_requested = rep.emergency;
+    rep.update_due = t >= I.next || rep.emergency;
+    rep.violations = I.pending_violations;
+    return rep;
+}
+
+UpdateReport DeformingMesh::update() {
+    Impl& I = *impl_;
+    I.pending_violations.clear();
+    const auto t0 = Clock::now();
+    UpdateReport rep;
+    rep.t = I.t;
+    rep.emergency = I.emergency_requested;
+    I.cur = {};
+    rep.R_before = I.max_circumradius();
+    const bool broken = I.folded_edges() > I.folded_at_step;
+    I.pending_sorted = I.pending_insert;
+    std::sort(I.pending_sorted.begin(), I.pending_sorted.end());
+    if (broken) I.rebuild();
+    I.refine_vert();
+    I.insertion();
+    I.pending_sorted.clear();
+    I.deletion();
+    I.spacing_repair();
+    if (rep.emergency && (I.folded_edges() > I.folded_at_step || has_self_intersections(I.mesh))) {
+        I.rebuild();
+        I.refine_vert();
+    }
+    I.schedule();
+    I.finish_update();
+    I.emergency_requested = false;
+    rep.R_after = I.R_last;
+    rep.next_step = I.next;
+    rep.samples = I.live;
+    rep.vertices = I.mesh.n_vertices();
+    I.cur.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    rep.counters = I.cur;
+    I.totals += I.cur;
+    ++I.n_updates;
+    rep.violations = I.pending_violations;
+    return rep;
+}
+
+SampleId DeformingMesh::queue_insertion(const Point3& p) {
+    Impl& I = *impl_;
+    if (!is_finite(p)) throw InvalidInput("deform: an inserted sample has a non-finite position");
+    const SampleId id = static_cast<SampleId>(I.pos.size());
+    I.grow(I.pos.size() + 1);
+    I.pos[id] = p;
+    I.state[id] = State::Pending;
+    I.pending_insert.push_back(id);
+    ++I.live;
+    return id;
+}
+
+void DeformingMesh::queue_deletion(SampleId id) {
+    Impl& I = *impl_;
+    if (id >= I.pos.size() || I.state[id] == State::Dead)
+        throw InvalidInput("deform: cannot delete " + id_str(id) + ": no such live sample");
+    if (I.state[id] == State::Pending)
+        throw InvalidInput("deform: cannot delete " + id_str(id) + ": its insertion is still queued");
+    I.pending_delete.push_back(id);
+}
+
+int DeformingMesh::time() const { return impl_->t; }
+int DeformingMesh::next_step() const { return impl_->next; }
+double DeformingMesh::lambda() const { return impl_->params.lambda; }
+const DeformParams& DeformingMesh::params() const { return impl_->params; }
+const SurfaceMesh& DeformingMesh::mesh() const { return impl_->mesh; }
+SampleId DeformingMesh::sample_of(Vertex v) const {
+    if (!v.is_valid() || v.idx() >= impl_->mesh.vertices_size()) return kNoSample;
+    return impl_->vsample[v];
+}
+Vertex DeformingMesh::vertex_of(SampleId id) const {
+    if (id >= impl_->pos.size() || impl_->state[id] != State::Vertex) return Vertex();
+    return impl_->vert_of[id];
+}
+SampleId DeformingMesh::owner_of(SampleId id) const {
+    if (id >= impl_->pos.size() || impl_->state[id] != State::Dormant) return kNoSample;
+    return impl_->owner[id];
+}
+std::size_t DeformingMesh::id_capacity() const { return impl_->pos.size(); }
+bool DeformingMesh::is_live(SampleId id) const { return id < impl_->pos.size() && impl_->state[id] != State::Dead; }
+std::size_t DeformingMesh::live_samples() const { return impl_->live; }
+double DeformingMesh::max_circumradius() const { return impl_->max_circumradius(); }
+const std::vector<ViolationRecord>& DeformingMesh::violations() const { return impl_->violations; }
+const UpdateCounters& DeformingMesh::totals() const { return impl_->totals; }
+std::size_t DeformingMesh::updates() const { return impl_->n_updates; }
+
+// ---- invariants -----------------------------------------------------------------------------
+
+InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options) const {
+    const Impl& I = *impl_;
+    InvariantReport r;
+    auto fail = [&](std::string s) {
+        r.ok = false;
+        if (r.failures.size() < 50) r.failures.push_back(std::move(s));
+    };
+    const auto mc = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
+    if (!mc.ok()) fail("mesh: " + mc.summary());
+    if (mc.euler != I.euler)
+        fail("Euler characteristic " + std::to_string(mc.euler) + " != " + std::to_string(I.euler) + " at t = 0");
+    r.vertices = I.mesh.n_vertices();
+    r.R = I.max_circumradius();
+    const double R = r.R;
+    // sample states and the mesh agree
+    for (Vertex v : I.mesh.vertices()) {
+        const SampleId s = I.sid(v);
+        if (s >= I.pos.size() || I.state[s] != State::Vertex || I.vert_of[s] != v)
+            fail("vertex " + std::to_string(v.idx()) + " is not tied to its sample " + std::to_string(s));
+        else if (I.mesh.position(v) != I.pos[s])
+            fail("vertex of " + id_str(s) + " is not at its sample's position");
+    }
+    // dormant lists partition P \ Vert
+    std::size_t in_lists = 0;
+    for (SampleId s = 0; s < I.pos.size(); ++s) {
+        if (I.state[s] == State::Vertex) {
+            for (std::uint32_t i = 0; i < I.dl[s].size(); ++i) {
+                const SampleId p = I.dl[s][i];
+                if (I.state[p] != State::Dormant || I.owner[p] != s || I.dpos[p] != i)
+                    fail("dormant list of " + id_str(s) + " holds " + id_str(p) + " inconsistently");
+            }
+            in_lists += I.dl[s].size();
+        } else if (I.state[s] == State::Dormant) {
+            ++r.dormant;
+            const SampleId o = I.owner[s];
+            if (o >= I.pos.size() || I.state[o] != State::Vertex) {
+                fail(id_str(s) + " is dormant but its owner is not a vertex");
+                continue;
+            }
+            const double d = distance(I.pos[s], I.pos[o]);
+            r.max_dormant_distance = std::max(r.max_dormant_distance, d);
+            if (d > options.dormant_factor * R)
+                fail(id_str(s) + " is " + std::to_string(d / R) + " R from its owner " + id_str(o));
+        }
+        if (I.state[s] == State::Vertex || I.state[s] == State::Dormant) ++r.samples;
+    }
+    if (in_lists != r.dormant)
+        fail("dormant lists hold " + std::to_string(in_lists) + " samples but " + std::to_string(r.dormant) +
+             " samples are dormant");
+    // triangle shape
+    for (Face f : I.mesh.faces()) {
+        const auto vs = I.mesh.face_vertices(f);
+        const double re = radius_edge_ratio(I.mesh.position(vs[0]), I.mesh.position(vs[1]), I.mesh.position(vs[2]));
+        r.max_radius_edge = std::max(r.max_radius_edge, re);
+        if (!(re <= options.radius_edge_bound))
+            fail("triangle (" + std::to_string(I.sid(vs[0])) + ", " + std::to_string(I.sid(vs[1])) + ", " +
+                 std::to_string(I.sid(vs[2])) + ") has radius-edge ratio " + std::to_string(re));
+    }
+    // spacing and empty balls
+    if (R > 0) {
+        PointGrid g = I.vertex_grid(R);
+        r.min_spacing = std::numeric_limits<double>::infinity();
+        for (Vertex v : I.mesh.vertices()) {
+            const SampleId s = I.sid(v);
+            g.for_each_candidate(I.pos[s], R, [&](std::uint32_t w) {
+                if (w == s) return;
+                const double d = distance(I.pos[w], I.pos[s]);
+                r.min_spacing = std::min(r.min_spacing, d);
+                if (w > s && d < options.spacing_factor * R)
+                    fail("vertices " + id_str(s) + " and " + id_str(w) + " are " + std::to_string(d / R) + " R apart");
+            });
+        }
+        if (options.empty_balls)
+            for (Face f : I.mesh.faces()) {
+                const auto vs = I.mesh.face_vertices(f);
+                const Point3 &a = I.mesh.position(vs[0]), &b = I.mesh.position(vs[1]), &c = I.mesh.position(vs[2]);
+                if (collinear(a, b, c)) continue;
+                const Point3 cc = circumcenter(a, b, c);
+                const double rad = distance(cc, a);
+                std::size_t hits = 0;
+                g.for_each_candidate(cc, rad, [&](std::uint32_t w) {
+                    const Vertex x = I.vert_of[w];
+                    if (x == vs[0] || x == vs[1] || x == vs[2]) return;
+                    if (distance(I.pos[w], cc) > rad * (1 + 1e-9)) return;
+                    if (in_diametric_ball(a, b, c, I.pos[w]) == Sign::Positive) ++hits;
+                });
+                if (hits > 0) {
+                    if (r.nonempty_balls++ == 0)
+                        fail("the diametric ball of triangle (" + std::to_string(I.sid(vs[0])) + ", " +
+                             std::to_string(I.sid(vs[1])) + ", " + std::to_string(I.sid(vs[2])) + ") holds " +
+                             std::to_string(hits) + " vertices");
+                }
+            }
+        if (r.nonempty_balls > 1) fail(std::to_string(r.nonempty_balls) + " diametric balls hold vertices in all");
+    }
+    if (options.self_intersections) {
+        r.self_intersections = count_self_intersections(I.mesh);
+        if (r.self_intersections > 0)
+            fail(std::to_string(r.self_intersections) + " pairs of triangles intersect");
+    }
+    return r;
+}
+
+}  // namespace dynmesh
