@@ -13,6 +13,7 @@
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
@@ -95,7 +96,8 @@ struct DeformingMesh::Impl {
     UpdateCounters cur;
     std::size_t n_updates = 0;
     bool emergency_requested = false;
-    std::size_t folded_at_step = 0;  ///< edges with edge-angle <= 90 at the end of the last update
+    std::size_t folded_at_step = 0;
+    std::size_t folded_now = 0;  ///< as measured by the last advance()  ///< edges with edge-angle <= 90 at the end of the last update
     std::size_t live = 0;
 
     // ---- small helpers --------------------------------------------------------------------
@@ -139,14 +141,27 @@ struct DeformingMesh::Impl {
         vsample[v] = s;
     }
 
+    /// Largest circumradius, cached until the mesh changes (touch()).
     [[nodiscard]] double max_circumradius() const {
-        double R = 0;
+        if (R_valid) return R_cache;
+        double r2max = 0;
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
-            R = std::max(R, circumradius(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2])));
+            const Point3 &a = mesh.position(vs[0]), &b = mesh.position(vs[1]), &c = mesh.position(vs[2]);
+            // R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2)
+            const Vec3 ab = b - a, ac = c - a, bc = c - b;
+            const double den = 4 * sqnorm(cross(ab, ac));
+            const double num = sqnorm(ab) * sqnorm(bc) * sqnorm(ac);
+            const double r2 = den > 0 ? num / den : std::numeric_limits<double>::infinity();
+            r2max = std::max(r2max, r2);
         }
-        return R;
+        R_cache = std::sqrt(r2max);
+        R_valid = true;
+        return R_cache;
     }
+    void touch() { R_valid = false; }
+    mutable double R_cache = 0;
+    mutable bool R_valid = false;
 
     /// Grid of the current vertices (ids = sample ids).
     PointGrid vertex_grid(double cell) const {
@@ -200,6 +215,7 @@ struct DeformingMesh::Impl {
             return;
         }
         const AddResult r = add_point(mesh, P(p), f);
+        touch();
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex) {
             violation(Violation::AddVertexCase, id_str(p) + " falls on the vertex of " + id_str(sid(r.near_vertex)));
@@ -216,6 +232,7 @@ struct DeformingMesh::Impl {
     bool remove_sample(SampleId s, PointGrid* grid) {
         const Vertex v = vert_of[s];
         const RemoveResult r = remove_point(mesh, v);
+        touch();
         cur.flips += r.flips;
         if (!r.removed) {
             violation(Violation::RemoveFailed, "vertex of " + id_str(s) + ": " + r.reason);
@@ -239,6 +256,7 @@ struct DeformingMesh::Impl {
         fo.rule = FlipRule::DiametricBall;
         const auto edges = all_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
+        if (r.flips > 0) touch();
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
@@ -474,7 +492,50 @@ struct DeformingMesh::Impl {
     /// compression) lose one vertex, then RefineVert restores the density.
     void spacing_repair() {
         if (!params.spacing_repair) return;
-        if (decimation(1.0 / 3.0) > 0) {
+        const double R = max_circumradius();
+        // Close pairs: the mesh edges shorter than R/3 (nearest neighbours are mesh edges in
+        // a Delaunay mesh). In id order of the smaller endpoint, the larger one goes black
+        // unless the smaller one is black already (Decimation's colouring, restricted).
+        std::vector<std::pair<SampleId, SampleId>> close;
+        for (Edge e : mesh.edges()) {
+            const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
+            if (distance(mesh.position(a), mesh.position(b)) < R / 3)
+                close.emplace_back(std::min(sid(a), sid(b)), std::max(sid(a), sid(b)));
+        }
+        if (close.empty()) return;
+        std::sort(close.begin(), close.end());
+        std::unordered_set<SampleId> black;
+        std::vector<SampleId> blacks;
+        for (const auto& [a, b] : close)
+            if (!black.count(a) && black.insert(b).second) blacks.push_back(b);
+        std::size_t removed = 0;
+        for (SampleId u : blacks) {
+            if (mesh.n_vertices() <= 4 || state[u] != State::Vertex) continue;
+            // The nearest white neighbour takes u and its dormant list.
+            SampleId to = kNoSample;
+            double best = std::numeric_limits<double>::infinity();
+            for (Vertex w : mesh.neighbors(vert_of[u])) {
+                const SampleId ws = sid(w);
+                if (black.count(ws)) continue;
+                const double d = distance(P(ws), P(u));
+                if (d < best || (d == best && ws < to)) {
+                    best = d;
+                    to = ws;
+                }
+            }
+            if (to == kNoSample) continue;
+            std::vector<SampleId> moving = dl[u];
+            dl[u].clear();
+            if (!remove_sample(u, nullptr)) {
+                dl[u] = std::move(moving);
+                for (std::uint32_t i = 0; i < dl[u].size(); ++i) dpos[dl[u][i]] = i;
+                continue;
+            }
+            ++removed;
+            moving.push_back(u);
+            for (SampleId p : moving) attach(p, to);
+        }
+        if (removed > 0) {
             ++cur.spacing_repairs;
             refine_vert();
         }
@@ -502,7 +563,7 @@ struct DeformingMesh::Impl {
         mesh.garbage_collection();
         std::fill(vert_of.begin(), vert_of.end(), Vertex());
         for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
-        folded_at_step = folded_edges();
+        folded_at_step = folded_now = folded_edges();
         ref_normals.assign(mesh.faces_size(), Vec3{});
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
@@ -543,6 +604,8 @@ struct DeformingMesh::Impl {
         std::vector<SampleId> vsamples;
         for (std::uint32_t i : af.report.vertex_sample) vsamples.push_back(vs[i]);
         install_mesh(std::move(af.mesh), vsamples);
+        global_flip();
+        canonicalize();
         violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
     }
 
@@ -550,6 +613,7 @@ struct DeformingMesh::Impl {
     /// at its nearest vertex.
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
+        touch();
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
         for (SampleId s = 0; s < state.size(); ++s) {
             dl[s].clear();
@@ -569,6 +633,30 @@ struct DeformingMesh::Impl {
             attach(s, w);
         }
     }
+    /// Renumbers the mesh canonically: vertices in sample-id order, triangles sorted by their
+    /// sample ids (each rotated to start at its smallest). Makes everything after it
+    /// independent of how the mesh was built (CGAL's advancing front, for one, returns
+    /// different but equally valid triangles from run to run).
+    void canonicalize() {
+        std::vector<SampleId> vs;
+        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+        std::sort(vs.begin(), vs.end());
+        std::vector<std::uint32_t> index(state.size(), 0);
+        TriangleSoup soup;
+        for (std::uint32_t i = 0; i < vs.size(); ++i) {
+            index[vs[i]] = i;
+            soup.points.push_back(P(vs[i]));
+        }
+        for (Face f : mesh.faces()) {
+            const auto c = mesh.face_vertices(f);
+            std::array<std::uint32_t, 3> t{index[sid(c[0])], index[sid(c[1])], index[sid(c[2])]};
+            std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+            soup.triangles.push_back(t);
+        }
+        std::sort(soup.triangles.begin(), soup.triangles.end());
+        install_mesh(SurfaceMesh::from_soup(soup), vs);
+    }
+
     bool is_pending_insert(SampleId s) const {
         return std::binary_search(pending_sorted.begin(), pending_sorted.end(), s);
     }
@@ -625,7 +713,8 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
     if (params.h0) {
         h0 = *params.h0;
     } else if (initial.surface != nullptr) {
-        const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed);
+        // A seed unrelated to the samples (which may come from the same generator).
+        const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed ^ 0x9E3779B97F4A7C15ULL);
         const Bbox3 bb = initial.surface->bbox();
         const double diag = distance(bb.min, bb.max);
         const double cell = std::max(diag * std::sqrt(1.0 / static_cast<double>(positions.size())), 1e-12);
@@ -725,6 +814,7 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
         I.euler = rep.euler;
     }
     I.global_flip();
+    I.canonicalize();
     // Not in the paper: RefineVert until nothing changes, so that the first steps do not pay
     // for the initialisation (and a rigid motion then needs no change at all, spec §8.8).
     for (int round = 0; round < (params.init_refine ? 16 : 0); ++round) {
@@ -779,6 +869,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
         I.pos[s] = positions[s];
     }
     for (Vertex v : I.mesh.vertices()) I.mesh.position(v) = I.pos[I.sid(v)];
+    I.touch();
     rep.max_displacement = maxd;
     bool trip = false;
     if (maxd > I.params.lambda * dt * (1 + 1e-9)) {
@@ -807,7 +898,9 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
                                                    std::to_string(I.sid(vs[2])) + ")");
         trip = true;
     }
-    if (const std::size_t folded = I.folded_edges(); folded > I.folded_at_step) {
+    const std::size_t folded = I.folded_edges();
+    I.folded_now = folded;
+    if (folded > I.folded_at_step) {
         I.violation(Violation::EdgeAngleBelow90, std::to_string(folded) + " edges with an edge-angle <= 90 degrees (" +
                                                      std::to_string(I.folded_at_step) + " at the last step)");
         trip = true;
@@ -828,7 +921,7 @@ UpdateReport DeformingMesh::update() {
     rep.emergency = I.emergency_requested;
     I.cur = {};
     rep.R_before = I.max_circumradius();
-    const bool broken = I.folded_edges() > I.folded_at_step;
+    const bool broken = I.folded_now > I.folded_at_step;
     I.pending_sorted = I.pending_insert;
     std::sort(I.pending_sorted.begin(), I.pending_sorted.end());
     if (broken) I.rebuild();

@@ -63,8 +63,21 @@ bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Poi
     return new_max < old_max - t;
 }
 
+namespace {
+
+/// Floating-point filter: true when x is certainly outside the diametric ball of abc (by a
+/// relative margin far above rounding error). False means "unknown": ask the exact predicate.
+bool clearly_outside_ball(const Point3& a, const Point3& b, const Point3& c, const Point3& x) {
+    const Point3 cc = circumcenter(a, b, c);
+    const double r2 = sqnorm(cc - a);
+    return std::isfinite(r2) && sqnorm(x - cc) > r2 * (1 + 1e-6);
+}
+
+}  // namespace
+
 FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& r,
                                 const Point3& s) {
+    if (clearly_outside_ball(p, q, r, s) && clearly_outside_ball(p, q, s, r)) return FlipVerdict::RuleFails;
     const bool s_in = in_diametric_ball(p, q, r, s) == Sign::Positive;
     const bool r_in = s_in || in_diametric_ball(p, q, s, r) == Sign::Positive;
     if (!r_in) return FlipVerdict::RuleFails;
