@@ -12,5 +12,6 @@ void register_check(CLI::App& root, int& result);
 void register_sample(CLI::App& root, int& result);
 void register_experiment(CLI::App& root, int& result);
 void register_quadtree(CLI::App& root, int& result);
+void register_deform(CLI::App& root, int& result);
 
 }  // namespace dynmesh::cli

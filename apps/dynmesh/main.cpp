@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     dynmesh::cli::register_sample(app, result);
     dynmesh::cli::register_experiment(app, result);
     dynmesh::cli::register_quadtree(app, result);
+    dynmesh::cli::register_deform(app, result);
     CLI11_PARSE(app, argc, argv);
     return result;
 }

@@ -123,6 +123,12 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
         if (v == FlipVerdict::RuleFails) return v;
         if (is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
             return FlipVerdict::Degenerate;
+        // Never fold: the new pair must not turn by 90 degrees or more against each other or
+        // against the old pair (it cannot for dense samples, Theorem 4.1 (iv) of the deforming
+        // paper; on sparse ones the diametric rule alone could flip across a sharp ridge).
+        const Vec3 n_old = triangle_normal_raw(p, q, r) + triangle_normal_raw(q, p, s);
+        const Vec3 n1 = triangle_normal_raw(p, s, r), n2 = triangle_normal_raw(q, r, s);
+        if (!(dot(n1, n2) > 0 && dot(n1, n_old) > 0 && dot(n2, n_old) > 0)) return FlipVerdict::Degenerate;
     }
     if (m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
     return v;

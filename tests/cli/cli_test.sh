@@ -17,7 +17,7 @@ mesh=$data/meshes/blobby.off
 case $case_name in
 help)
     run 0 "$bin" --help
-    for c in flip worsen stats check sample experiment quadtree; do
+    for c in flip worsen stats check sample experiment quadtree deform; do
         run 0 "$bin" $c --help
         grep -q -- "--report" out.txt || fail "$c --help does not mention --report"
     done
@@ -204,6 +204,71 @@ quadtree_bad)
     expect_error "dupop.txt:1" "$pts" --ops dupop.txt
     expect_error "middle third" "$pts" --domain 0,0,1
     expect_error "only 2" "$pts" --dim 3
+    ;;
+deform_scenarios)
+    # Every built-in scenario, small, with the invariant checks on; the mesh at every time as PLY.
+    for sc in pulse stretch twist bend rotate; do
+        run 0 "$bin" deform $sc --samples 1500 --steps 24 --out $sc --format ply --check --no-plot \
+            --report $sc.json --quiet
+        for k in samples time_units updates flips insertions removals seconds_updates \
+                 worst_hausdorff_over_eps worst_min_angle_deg self_intersections; do
+            json_get $sc.json "['$k']" >/dev/null || fail "$sc report lacks $k"
+        done
+        [ "$(json_get $sc.json "['self_intersections']")" = "0" ] || fail "$sc: self-intersections"
+        [ "$(json_get $sc.json "['time_units']")" -ge 24 ] || fail "$sc: time_units"
+        t=$(json_get $sc.json "['time_units']")
+        for i in 0 1 $t; do
+            f=$(printf '%s/mesh_%05d.ply' $sc $i)
+            [ -s "$f" ] || fail "$sc: $f missing"
+            run 0 "$bin" check "$f"
+        done
+        [ -s $sc/log.csv ] || fail "$sc: no log.csv"
+        [ "$(wc -l < $sc/log.csv)" -eq $((t + 2)) ] || fail "$sc: log.csv should have a header and one row per time unit"
+    done
+    # The rigid motion needs no change at all.
+    [ "$(json_get rotate.json "['flips']")" = "0" ] || fail "rotation made flips"
+    ;;
+deform_series)
+    run 0 "$bin" deform stretch --samples 1500 --steps 20 --out series --report r.json --quiet
+    [ -s series/mesh.pvd ] || fail "no mesh.pvd"
+    [ "$(ls series/mesh_*.vtp | wc -l)" -eq "$(($(json_get r.json "['time_units']") + 1))" ] || fail "one .vtp per time unit"
+    grep -q 'min_angle_deg' series/mesh_00007.vtp || fail "vtp lacks the quality fields"
+    grep -q 'mesh_00020.vtp' series/mesh.pvd || fail "pvd does not list the last frame"
+    head -1 series/log.csv | grep -q 'hausdorff_over_h' || fail "log.csv header"
+    json_get series/summary.json "['updates']" >/dev/null || fail "summary.json"
+    # Every-step schedule: an update at every time unit.
+    run 0 "$bin" deform stretch --samples 1500 --steps 20 --schedule every-step --report e.json --quiet
+    [ "$(json_get e.json "['updates']")" = "$(json_get e.json "['time_units']")" ] || fail "every-step updates"
+    ;;
+deform_mesh)
+    # A real closed mesh carried by a bend, with insertions and deletions keeping the density.
+    run 0 "$bin" deform "$data/meshes/blobby.off" --warp bend --samples 3000 --steps 30 --out m \
+        --format off --check --no-plot --report m.json --quiet
+    [ "$(json_get m.json "['self_intersections']")" = "0" ] || fail "self-intersections"
+    [ -s m/mesh_00030.off ] || fail "no last frame"
+    run 0 "$bin" deform "$data/meshes/blobby.off" --warp twist --samples 3000 --steps 30 --report t.json --quiet
+    [ -s "$data/meshes/eight.off" ] || fail "input gone"
+    ;;
+deform_bad)
+    expect_error() {  # expect_error NEEDLE ARGS...
+        local needle=$1; shift
+        "$bin" deform "$@" >out.txt 2>err.txt && fail "accepted: $*"
+        grep -q -- "$needle" err.txt || { cat err.txt >&2; fail "error for '$*' does not mention '$needle'"; }
+        [ "$(wc -l < err.txt)" -le 3 ] || { cat err.txt >&2; fail "error for '$*' is not short"; }
+    }
+    expect_error "bogus" bogus_scenario
+    expect_error "format" stretch --format xyz --samples 500 --steps 5
+    expect_error "schedule" stretch --schedule sometimes --samples 500 --steps 5
+    expect_error "speed" stretch --speed nan
+    expect_error "warp" stretch --warp bend --samples 500 --steps 5
+    expect_error "warp" "$data/meshes/eight.off" --warp wobble
+    for f in "$data"/meshes/invalid/*; do
+        "$bin" deform "$f" --samples 500 --steps 3 >out.txt 2>err.txt && fail "accepted invalid mesh $f"
+        [ "$(wc -l < err.txt)" -le 3 ] || fail "long error for $f"
+    done
+    cp "$data/meshes/eight.off" in.off
+    expect_error "overwrite" in.off --report in.off --samples 500 --steps 3
+    cmp -s in.off "$data/meshes/eight.off" || fail "input overwritten"
     ;;
 *) fail "unknown case" ;;
 esac

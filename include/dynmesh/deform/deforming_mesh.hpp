@@ -102,6 +102,7 @@ enum class Violation {
     DeletionCapHit,             ///< Deletion hit deletion_max_iters
     AddVertexCase,              ///< Add found the sample on an existing vertex (kept dormant)
     FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
+    AddFolded,                  ///< Add would fold the mesh (sparse samples); undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation
     NonEmptyBall,               ///< a diametric ball still holds a vertex after flipping
     Rebuild                     ///< the mesh was rebuilt from scratch to recover
@@ -154,6 +155,9 @@ struct StepReport {
 struct InvariantOptions {
     bool self_intersections = true;  ///< run the (n log n) self-intersection test
     bool empty_balls = true;         ///< every diametric ball empty of vertices
+    /// Count non-empty balls without failing on them (they can survive where the
+    /// circumradius guard refused a flip on sparse samples, spec §9 P9).
+    bool empty_balls_soft = false;
     /// Slack factors for checks that hold between steps only up to the L3.6 constants.
     double radius_edge_bound = 3.0;  ///< every triangle's radius-edge ratio <= this
     double spacing_factor = 1.0 / 3.0;  ///< every vertex pair >= spacing_factor * R

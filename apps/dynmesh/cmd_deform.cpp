@@ -1,0 +1,255 @@
+/// `dynmesh deform`: a deforming-surface scenario (or any closed mesh carried by a warp) run
+/// through DeformingMesh, with a ParaView series, a per-time-unit log, quality plots and a
+/// JSON report (shared/specs/deforming-mesh.md).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "dynmesh/deform/run.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/io/text_file.hpp"
+
+namespace dynmesh::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DeformArgs {
+    CommonOptions common;
+    std::string scenario;
+    std::string warp;
+    int steps = 400;
+    std::size_t samples = 20000;
+    double speed = 1.0;
+    std::string schedule = "paper";
+    double kappa = kPracticalKappa;
+    std::uint64_t seed = 1;
+    std::string out;
+    std::string format = "vtp";
+    int every = 1;
+    int measure_every = 1;
+    bool no_self_intersections = false;
+    bool no_plot = false;
+    bool check = false;
+};
+
+/// Per-face fields of a frame for the .vtp series.
+WriteOptions face_fields(const SurfaceMesh& m, double R) {
+    WriteOptions o;
+    ScalarField ma{"min_angle_deg", {}}, re{"radius_edge", {}}, cr{"circumradius_over_R", {}};
+    for (Face f : m.faces()) {
+        const auto vs = m.face_vertices(f);
+        const Point3 &a = m.position(vs[0]), &b = m.position(vs[1]), &c = m.position(vs[2]);
+        ma.values.push_back(rad_to_deg(min_angle(a, b, c)));
+        re.values.push_back(radius_edge_ratio(a, b, c));
+        cr.values.push_back(R > 0 ? circumradius(a, b, c) / R : 0.0);
+    }
+    o.face_fields = {std::move(ma), std::move(re), std::move(cr)};
+    return o;
+}
+
+std::string frame_name(int t, const std::string& ext) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "mesh_%05d.", t);
+    return buf + ext;
+}
+
+nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
+    nlohmann::json j;
+    j["scenario"] = r.scenario;
+    j["description"] = s.description;
+    j["schedule"] = r.schedule;
+    j["kappa"] = r.kappa;
+    j["lambda"] = r.lambda;
+    j["h0"] = r.h0;
+    j["samples"] = r.samples;
+    j["time_units"] = r.time_units;
+    j["updates"] = r.updates;
+    j["emergency_updates"] = r.emergency_updates;
+    j["flips"] = r.flips;
+    j["insertions"] = r.insertions;
+    j["removals"] = r.removals;
+    j["changes"] = r.flips + r.insertions + r.removals;
+    j["samples_inserted"] = r.samples_inserted;
+    j["samples_deleted"] = r.samples_deleted;
+    j["seconds_updates"] = r.seconds_updates;
+    j["seconds_init"] = r.seconds_init;
+    j["seconds_total"] = r.seconds_total;
+    j["worst_hausdorff_over_eps"] = r.worst_hausdorff_over_eps;
+    j["worst_min_angle_deg"] = r.worst_min_angle_deg;
+    j["worst_max_radius_edge"] = r.worst_max_radius_edge;
+    j["worst_R_over_eps"] = r.worst_R_over_h;
+    j["worst_normal_deviation_deg"] = r.worst_normal_dev_deg;
+    j["worst_min_edge_angle_deg"] = r.worst_min_edge_angle_deg;
+    j["self_intersections"] = r.self_intersections;
+    j["inverted_triangles"] = r.inverted;
+    j["invariant_failures"] = r.invariant_failures;
+    j["first_invariant_failures"] = r.first_invariant_failures;
+    j["nonempty_balls_max"] = r.nonempty_balls_max;
+    j["nonempty_balls_total"] = r.nonempty_balls_total;
+    j["violations"] = r.violations;
+    return j;
+}
+
+/// The plotting script next to the sources, when it is there.
+fs::path plot_script() {
+#ifdef DYNMESH_SCRIPTS_DIR
+    return fs::path(DYNMESH_SCRIPTS_DIR) / "plot_deform.py";
+#else
+    return {};
+#endif
+}
+
+void run_deform_cmd(const DeformArgs& a) {
+    Progress progress("deform", a.common.quiet);
+    const Schedule schedule = parse_schedule(a.schedule);
+    if (a.format != "vtp" && a.format != "ply" && a.format != "off")
+        throw InvalidInput("--format must be vtp, ply or off, got '" + a.format + "'");
+    std::vector<std::string> files;
+    if (fs::exists(a.scenario)) files.push_back(a.scenario);
+    check_report_path(a.common, files);
+    if (!a.out.empty() && fs::exists(a.scenario) &&
+        fs::weakly_canonical(fs::path(a.scenario)).parent_path() == fs::weakly_canonical(fs::path(a.out)))
+        throw InvalidInput("--out " + a.out + " is the input mesh's own directory; choose another");
+
+    progress.stage("building the scenario");
+    ScenarioOptions so;
+    so.samples = a.samples;
+    so.steps = a.steps;
+    so.speed = a.speed;
+    so.seed = a.seed;
+    so.warp = a.warp;
+    const Scenario s = make_scenario(a.scenario, so);
+    if (!a.common.quiet)
+        std::cerr << "dynmesh deform: " << s.description << "; " << s.initial.size() << " samples, "
+                  << s.time_units << " time units, lambda = " << s.lambda << ", h0 = " << s.h0 << "\n";
+
+    if (!a.out.empty()) fs::create_directories(a.out);
+    std::vector<std::pair<double, std::string>> series;
+
+    DeformRunOptions ro;
+    ro.schedule = schedule;
+    ro.params.kappa = a.kappa;
+    ro.params.seed = a.seed;
+    ro.measure_every = a.measure_every;
+    ro.measure.self_intersections = !a.no_self_intersections;
+    ro.check_invariants = a.check;
+    ro.on_frame = [&](const DeformFrame& f) {
+        progress.stage("t = " + std::to_string(f.t) + " / " + std::to_string(s.time_units));
+        if (a.out.empty()) return;
+        if (f.t % a.every != 0 && f.t != s.time_units) return;
+        const SurfaceMesh& m = f.mesh->mesh();
+        const std::string name = frame_name(f.t, a.format);
+        if (a.format == "vtp") {
+            write_mesh(m, fs::path(a.out) / name, face_fields(m, f.mesh->max_circumradius()));
+            series.emplace_back(f.t, name);
+        } else {
+            write_mesh(m, fs::path(a.out) / name);
+        }
+    };
+    const DeformRunReport r = run_deform(s, ro);
+
+    nlohmann::json j = report_json(r, s);
+    if (!a.out.empty()) {
+        progress.stage("writing the log");
+        if (a.format == "vtp") write_pvd(fs::path(a.out) / "mesh.pvd", series);
+        write_text_file(fs::path(a.out) / "log.csv", log_csv(r));
+        write_text_file(fs::path(a.out) / "summary.json", j.dump(2) + "\n");
+        const fs::path script = plot_script();
+        if (!a.no_plot && !script.empty() && fs::exists(script) && fs::exists("/usr/bin/python3")) {
+            progress.stage("plotting");
+            const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + (fs::path(a.out) / "log.csv").string() +
+                                    "' '" + (fs::path(a.out) / "quality.png").string() + "' --title '" + s.name + " (" +
+                                    r.schedule + ", kappa " + std::to_string(static_cast<int>(r.kappa)) +
+                                    ")' >/dev/null 2>&1";
+            if (std::system(cmd.c_str()) == 0)
+                j["plot"] = (fs::path(a.out) / "quality.png").string();
+            else if (!a.common.quiet)
+                std::cerr << "dynmesh deform: note: no quality.png (needs /usr/bin/python3 with matplotlib)\n";
+        }
+    }
+    write_report(a.common, j);
+    if (!a.common.quiet) {
+        std::printf("%s: %zu samples, %d time units, %zu updates (%zu emergency), %zu flips, %zu insertions, "
+                    "%zu removals, %.3f s in updates\n",
+                    r.scenario.c_str(), r.samples, r.time_units, r.updates, r.emergency_updates, r.flips,
+                    r.insertions, r.removals, r.seconds_updates);
+        std::printf("worst over all time units: Hausdorff/eps %.3f, min angle %.2f deg, radius-edge %.2f, "
+                    "R/eps %.2f, normal deviation %.2f deg, self-intersections %zu, inverted %zu\n",
+                    r.worst_hausdorff_over_eps, r.worst_min_angle_deg, r.worst_max_radius_edge, r.worst_R_over_h,
+                    r.worst_normal_dev_deg, r.self_intersections, r.inverted);
+        for (const auto& [k, n] : r.violations) std::printf("monitor %s: %zu\n", k.c_str(), n);
+        if (!a.out.empty()) std::printf("wrote %s/{mesh.pvd,log.csv,summary.json}\n", a.out.c_str());
+    }
+    if (a.check && (r.invariant_failures > 0 || r.self_intersections > 0 || r.inverted > 0)) {
+        std::string why = std::to_string(r.invariant_failures) + " updates failed the invariant checks";
+        if (!r.first_invariant_failures.empty()) why += " (first: " + r.first_invariant_failures.front() + ")";
+        why += ", " + std::to_string(r.self_intersections) + " self-intersections, " + std::to_string(r.inverted) +
+               " inverted triangles";
+        throw TopologyError("--check failed: " + why);
+    }
+}
+
+}  // namespace
+
+void register_deform(CLI::App& root, int& result) {
+    auto args = std::make_shared<DeformArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "deform",
+        "Maintain a mesh of a deforming surface known only by moving samples (Cheng-Dey): a built-in "
+        "scenario (pulse, stretch, twist, bend/boomerang, rotate) or a closed mesh file carried by --warp");
+    sub->add_option("scenario", args->scenario,
+                    "pulse | stretch | twist | bend | boomerang | rotate, or a closed mesh file (.off .obj .ply .stl)")
+        ->required();
+    sub->add_option("--warp", args->warp, "For a mesh file: bend | twist | pulse | stretch | rotate (default bend)");
+    sub->add_option("--steps", args->steps, "Time units of one out-and-back cycle")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000000));
+    sub->add_option("--samples", args->samples, "Number of samples |P(0)|")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{100}, std::size_t{100000000}));
+    sub->add_option("--speed", args->speed, "Motion speed factor theta (the same path in steps/speed units)")
+        ->capture_default_str()
+        ->check(finite_number())
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--schedule", args->schedule,
+                    "paper: update at t2 = t1 + floor(R/(kappa lambda)); every-step: at every time unit")
+        ->capture_default_str();
+    sub->add_option("--kappa", args->kappa, "Step constant (paper: 468; practical default: 32)")
+        ->capture_default_str()
+        ->check(finite_number())
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--seed", args->seed, "Random seed of the samples")->capture_default_str();
+    sub->add_option("--out", args->out,
+                    "Output directory: mesh_NNNNN.<format> per time unit, mesh.pvd (vtp), log.csv, summary.json, "
+                    "quality.png");
+    sub->add_option("--format", args->format, "Mesh files: vtp (ParaView series with quality fields) | ply | off")
+        ->capture_default_str();
+    sub->add_option("--every", args->every, "Write the mesh every K time units")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000000));
+    sub->add_option("--measure-every", args->measure_every,
+                    "Measure against the ground truth every K time units (1 = at every unit)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000000));
+    sub->add_flag("--no-self-intersections", args->no_self_intersections,
+                  "Skip the per-time-unit self-intersection test (faster)");
+    sub->add_flag("--no-plot", args->no_plot, "Do not write quality.png");
+    sub->add_flag("--check", args->check,
+                  "Check the invariants after every update; fail (exit 1) on any violation, "
+                  "self-intersection or inverted triangle");
+    add_common_options(*sub, args->common);
+    sub->callback([args, &result] { result = guarded("deform", [&] { run_deform_cmd(*args); }); });
+}
+
+}  // namespace dynmesh::cli

@@ -1,0 +1,134 @@
+/// One MeshUpdate of a deforming sphere (|P| = 10K, 100K, 1M random samples; the sphere is
+/// stretched along x, the samples moving lambda per time unit, and the update runs at the
+/// scheduled step, after floor(R / (kappa lambda)) units of motion), against rebuilding the
+/// mesh from the same samples at the same positions with CGAL's advancing-front
+/// reconstruction in the same run. Prints seconds per update, ns per sample (flat = linear
+/// time) and the rebuild / update ratio.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/reconstruct/advancing_front.hpp"
+#include "dynmesh/shapes/analytic.hpp"
+#include "recording_reporter.hpp"
+
+namespace {
+
+using namespace dynmesh;
+using Clock = std::chrono::steady_clock;
+
+/// x stretched by 1 + A (1 - cos(w t)) / 2: |d/dt| <= A w / 2 for |x| <= 1.
+struct Motion {
+    double A = 0.5;
+    double lambda = 2e-4;
+    [[nodiscard]] double w() const { return 2 * lambda / A; }
+    [[nodiscard]] double scale(int t) const { return 1 + A * (1 - std::cos(w() * t)) / 2; }
+    void at(int t, const std::vector<Point3>& p0, std::vector<Point3>& out) const {
+        const double s = scale(t);
+        out.resize(p0.size());
+        for (std::size_t i = 0; i < p0.size(); ++i) out[i] = Point3{p0[i].x * s, p0[i].y, p0[i].z};
+    }
+};
+
+struct Fixture {
+    std::vector<Point3> p0, pos;
+    std::unique_ptr<DeformingMesh> dm;
+    Motion motion;
+    double init_seconds = 0;
+};
+
+Fixture& fixture(std::size_t n) {
+    static std::map<std::size_t, Fixture> cache;
+    auto it = cache.find(n);
+    if (it != cache.end()) return it->second;
+    Fixture f;
+    const Sphere sphere(Point3{0, 0, 0}, 1.0);
+    f.p0 = sphere.sample_uniform(n, 1);
+    DeformParams params;
+    params.lambda = f.motion.lambda * 1.001;
+    params.h0_probes = std::max<std::size_t>(n, 100000);
+    const auto t0 = Clock::now();
+    f.dm = std::make_unique<DeformingMesh>(f.p0, params, InitialSurface{.surface = &sphere});
+    f.init_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    // Warm up: the first steps of the motion.
+    for (int k = 0; k < 2; ++k) {
+        const int t = f.dm->next_step();
+        f.motion.at(t, f.p0, f.pos);
+        f.dm->advance(t, f.pos);
+        f.dm->update();
+    }
+    return cache.emplace(n, std::move(f)).first->second;
+}
+
+/// One iteration = move the samples to the next scheduled step (not timed), then update.
+void BM_DeformUpdate(benchmark::State& state) {
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+    UpdateCounters total;
+    std::size_t updates = 0, units = 0;
+    for (auto _ : state) {
+        const int t0 = f.dm->time();
+        const int t = f.dm->next_step();
+        f.motion.at(t, f.p0, f.pos);
+        f.dm->advance(t, f.pos);
+        const auto start = Clock::now();
+        const UpdateReport u = f.dm->update();
+        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+        total += u.counters;
+        ++updates;
+        units += static_cast<std::size_t>(t - t0);
+    }
+    const double n = double(f.p0.size());
+    state.counters["samples"] = n;
+    state.counters["vertices"] = double(f.dm->mesh().n_vertices());
+    state.counters["init_s"] = f.init_seconds;
+    state.counters["units_per_step"] = double(units) / double(updates);
+    state.counters["changes_per_update"] = double(total.changes()) / double(updates);
+    state.counters["flips_per_update"] = double(total.flips) / double(updates);
+    state.counters["ns_per_sample"] =
+        benchmark::Counter(n * double(updates) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+/// The baseline: a from-scratch advancing-front reconstruction of the same samples at the
+/// positions of the last update.
+void BM_CgalAdvancingFrontRebuild(benchmark::State& state) {
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+    f.motion.at(f.dm->time(), f.p0, f.pos);
+    std::size_t faces = 0;
+    for (auto _ : state) {
+        const auto start = Clock::now();
+        const SurfaceMesh m = reconstruct_advancing_front(f.pos);
+        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+        faces = m.n_faces();
+    }
+    state.counters["samples"] = double(f.p0.size());
+    state.counters["faces"] = double(faces);
+}
+
+BENCHMARK(BM_DeformUpdate)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_CgalAdvancingFrontRebuild)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void print_summary(const dynmesh::bench::RecordingReporter& rep) {
+    std::printf("\nSummary: one scheduled update vs. CGAL advancing-front rebuild of the same samples\n");
+    std::printf("%10s %10s %12s %12s %12s %14s %10s\n", "samples", "vertices", "update s", "ns/sample",
+                "changes", "CGAL rebuild s", "ratio");
+    const auto& upd = rep.runs("BM_DeformUpdate");
+    const auto& cgal = rep.runs("BM_CgalAdvancingFrontRebuild");
+    for (const auto& [n, r] : upd) {
+        std::printf("%10zu %10.0f %12.4f %12.1f %12.0f", n, r.counter("vertices", 0), r.seconds,
+                    r.seconds / double(n) * 1e9, r.counter("changes_per_update", 0));
+        if (cgal.count(n))
+            std::printf(" %14.3f %10.1f", cgal.at(n).seconds, cgal.at(n).seconds / r.seconds);
+        std::printf("\n");
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return dynmesh::bench::run_benchmarks(argc, argv, print_summary); }

@@ -1,0 +1,101 @@
+#pragma once
+/// \file run_deform(): drives a DeformingMesh through a Scenario (the caller of the paper):
+/// moves the samples with the scenario's warp at every time unit, runs the update at each
+/// time step (or at every unit, for comparison), inserts and deletes samples to keep the
+/// density when the scenario asks for it, and measures the mesh against the ground truth at
+/// every time unit.
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/deform/ground_truth.hpp"
+#include "dynmesh/deform/scenario.hpp"
+
+namespace dynmesh {
+
+enum class Schedule {
+    Paper,     ///< update at the paper's time steps t2 = t1 + floor(R / (kappa lambda))
+    EveryStep  ///< update at every time unit (the naive maintenance the paper improves on)
+};
+[[nodiscard]] std::string_view to_string(Schedule s);
+/// "paper" or "every-step". \throw InvalidInput.
+[[nodiscard]] Schedule parse_schedule(std::string_view name);
+
+/// One time unit as seen by the callbacks.
+struct DeformFrame {
+    int t = 0;
+    bool updated = false;     ///< an update ran at t
+    bool emergency = false;   ///< ... because a motion monitor tripped
+    const DeformingMesh* mesh = nullptr;
+    const FrameMetrics* metrics = nullptr;  ///< h and Hausdorff are NaN between full measures
+    UpdateCounters counters;  ///< work of the update at t (zero when none ran)
+    std::size_t violations = 0;  ///< monitors and diagnostics raised at t
+};
+
+struct DeformRunOptions {
+    Schedule schedule = Schedule::Paper;
+    /// kappa, emergency steps, caps (lambda, h0 and horizon come from the scenario).
+    DeformParams params;
+    /// Shape, normal deviation, inversions and self-intersections are measured at every time
+    /// unit; the sampling radius h and the Hausdorff distance (which warp and search the whole
+    /// reference) every this many units (and at t = 0 and T).
+    int measure_every = 1;
+    MeasureOptions measure{.hausdorff = true, .self_intersections = true, .sampling_radius = true};
+    /// Run DeformingMesh::check_invariants() after every update (reported, never fatal).
+    bool check_invariants = false;
+    std::function<void(const DeformFrame&)> on_frame;
+};
+
+/// One line of the per-time-unit log.
+struct DeformLogRow {
+    FrameMetrics metrics;  ///< h, R_over_h, hausdorff* NaN when !measured
+    bool measured = false;  ///< h and the Hausdorff distance were measured
+    bool update = false;
+    bool emergency = false;
+    UpdateCounters counters;
+    std::size_t violations = 0;
+};
+
+struct DeformRunReport {
+    std::string scenario;
+    std::string schedule;
+    double kappa = 0, lambda = 0, h0 = 0;
+    std::size_t samples = 0;  ///< |P(0)|
+    int time_units = 0;
+    std::size_t updates = 0, emergency_updates = 0;
+    std::size_t flips = 0, insertions = 0, removals = 0;
+    std::size_t samples_inserted = 0, samples_deleted = 0;
+    double seconds_updates = 0;  ///< time in DeformingMesh::update() alone
+    double seconds_init = 0;
+    double seconds_total = 0;
+    // Worst values over every measured time unit.
+    double worst_hausdorff_over_eps = 0;  ///< Hausdorff / h (h = eps gamma measured)
+    double worst_min_angle_deg = 180;
+    double worst_max_radius_edge = 0;
+    double worst_R_over_h = 0;
+    double worst_normal_dev_deg = 0;
+    double worst_min_edge_angle_deg = 180;
+    std::size_t self_intersections = 0;  ///< summed over all measured time units
+    std::size_t inverted = 0;            ///< summed over all measured time units
+    std::size_t invariant_failures = 0;  ///< updates after which check_invariants() failed
+    std::vector<std::string> first_invariant_failures;
+    /// Diametric balls holding a vertex after an update (with check_invariants): largest
+    /// count after one update, and the sum over updates (spec §9 P9; soft).
+    std::size_t nonempty_balls_max = 0, nonempty_balls_total = 0;
+    std::map<std::string, std::size_t> violations;  ///< by kind
+    std::vector<DeformLogRow> log;
+};
+
+/// Runs the scenario from t = 0 to its horizon.
+DeformRunReport run_deform(const Scenario& scenario, const DeformRunOptions& options = {});
+
+/// The log as CSV (header + one row per time unit): the FrameMetrics columns (flatten()
+/// names), then update, emergency, flips, insertions, removals, samples_inserted,
+/// samples_deleted, violations, update_seconds.
+[[nodiscard]] std::string log_csv(const DeformRunReport& report);
+
+}  // namespace dynmesh

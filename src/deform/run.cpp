@@ -1,0 +1,205 @@
+#include "dynmesh/deform/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "dynmesh/error.hpp"
+
+namespace dynmesh {
+
+std::string_view to_string(Schedule s) { return s == Schedule::Paper ? "paper" : "every-step"; }
+
+Schedule parse_schedule(std::string_view name) {
+    if (name == "paper") return Schedule::Paper;
+    if (name == "every-step" || name == "every") return Schedule::EveryStep;
+    throw InvalidInput("unknown schedule '" + std::string(name) + "' (expected paper or every-step)");
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
+    DYNMESH_CHECK(options.measure_every >= 1, "run_deform: measure_every must be at least 1");
+    const auto t_start = Clock::now();
+    DeformRunReport rep;
+    rep.scenario = s.name;
+    rep.schedule = std::string(to_string(options.schedule));
+    const int T = s.time_units;
+    rep.time_units = T;
+
+    DeformParams params = options.params;
+    params.lambda = s.lambda;
+    params.h0 = s.h0;
+    params.horizon = T;
+    rep.kappa = params.kappa;
+    rep.lambda = params.lambda;
+    rep.h0 = s.h0;
+
+    // Sample id -> pool index, and the t = 0 positions of every sample id.
+    std::vector<std::uint32_t> pool_of(s.initial.begin(), s.initial.end());
+    std::vector<Point3> x0(pool_of.size());
+    for (std::size_t i = 0; i < pool_of.size(); ++i) x0[i] = s.reference.position(Vertex(pool_of[i]));
+    std::vector<SampleId> sample_of_pool(s.pool_size(), kNoSample);
+    for (std::size_t i = 0; i < pool_of.size(); ++i) sample_of_pool[pool_of[i]] = static_cast<SampleId>(i);
+    rep.samples = pool_of.size();
+
+    const auto t_init = Clock::now();
+    InitialSurface init{.surface = s.surface0.get(), .mesh = nullptr, .vertex_samples = {}};
+    if (!s.surface0 && s.initial_mesh) {
+        init.mesh = &*s.initial_mesh;
+        init.vertex_samples.resize(s.initial_mesh->vertices_size());
+        std::iota(init.vertex_samples.begin(), init.vertex_samples.end(), SampleId{0});
+    }
+    DeformingMesh dm(x0, params, init);
+    rep.seconds_init = std::chrono::duration<double>(Clock::now() - t_init).count();
+
+    GroundTruth truth(s);
+    std::vector<Point3> pos(x0.size());
+    std::vector<std::uint32_t> vertex_pool, live_pool;
+
+    auto measure = [&](int t, const UpdateCounters& c, bool updated, bool emergency, std::size_t nviol) {
+        DeformLogRow row;
+        row.update = updated;
+        row.emergency = emergency;
+        row.counters = c;
+        row.violations = nviol;
+        // Cheap measures at every unit; Hausdorff and h (which warp and search the whole
+        // reference) every measure_every units.
+        const bool full = t == 0 || t == T || t % options.measure_every == 0;
+        MeasureOptions mo = options.measure;
+        if (!full) {
+            mo.hausdorff = false;
+            mo.sampling_radius = false;
+        }
+        {
+            const SurfaceMesh& m = dm.mesh();
+            vertex_pool.assign(m.vertices_size(), 0);
+            for (Vertex v : m.vertices()) vertex_pool[v.idx()] = pool_of[dm.sample_of(v)];
+            live_pool.clear();
+            for (SampleId id = 0; id < pool_of.size(); ++id)
+                if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
+            truth.set_time(t);
+            row.metrics = truth.measure(m, vertex_pool, live_pool, mo);
+            row.measured = full;
+            const FrameMetrics& f = row.metrics;
+            if (std::isfinite(f.hausdorff_over_h))
+                rep.worst_hausdorff_over_eps = std::max(rep.worst_hausdorff_over_eps, f.hausdorff_over_h);
+            rep.worst_min_angle_deg = std::min(rep.worst_min_angle_deg, f.min_angle_deg);
+            rep.worst_max_radius_edge = std::max(rep.worst_max_radius_edge, f.max_radius_edge);
+            if (std::isfinite(f.R_over_h)) rep.worst_R_over_h = std::max(rep.worst_R_over_h, f.R_over_h);
+            rep.worst_normal_dev_deg = std::max(rep.worst_normal_dev_deg, f.normal_dev_max_deg);
+            rep.worst_min_edge_angle_deg = std::min(rep.worst_min_edge_angle_deg, f.min_edge_angle_deg);
+            rep.self_intersections += f.self_intersections;
+            rep.inverted += f.inverted;
+        }
+        row.metrics.t = t;
+        rep.log.push_back(row);
+        if (options.on_frame) {
+            DeformFrame fr;
+            fr.t = t;
+            fr.updated = updated;
+            fr.emergency = emergency;
+            fr.mesh = &dm;
+            fr.metrics = &rep.log.back().metrics;
+            fr.counters = c;
+            fr.violations = nviol;
+            options.on_frame(fr);
+        }
+    };
+    measure(0, {}, false, false, 0);
+
+    for (int t = 1; t <= T; ++t) {
+        pos.resize(x0.size());
+        warp_points(s, t, x0, pos);
+        const StepReport st = dm.advance(t, pos);
+        std::size_t nviol = st.violations.size();
+        const bool due = st.update_due || options.schedule == Schedule::EveryStep;
+        UpdateCounters c;
+        bool emergency = false;
+        if (due) {
+            if (s.edits) {
+                live_pool.clear();
+                for (SampleId id = 0; id < pool_of.size(); ++id)
+                    if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
+                const SampleEdits e = plan_sample_edits(s, t, live_pool, s.h0);
+                for (std::uint32_t q : e.insert_pool) {
+                    const Point3 p0 = s.reference.position(Vertex(q));
+                    Point3 pt;
+                    warp_points(s, t, std::span<const Point3>(&p0, 1), std::span<Point3>(&pt, 1));
+                    const SampleId id = dm.queue_insertion(pt);
+                    DYNMESH_ASSERT(id == pool_of.size(), "run_deform: sample ids out of step");
+                    pool_of.push_back(q);
+                    x0.push_back(p0);
+                    sample_of_pool[q] = id;
+                }
+                for (std::uint32_t q : e.delete_pool) {
+                    if (sample_of_pool[q] == kNoSample) continue;
+                    dm.queue_deletion(sample_of_pool[q]);
+                    sample_of_pool[q] = kNoSample;
+                }
+            }
+            const UpdateReport u = dm.update();
+            c = u.counters;
+            emergency = u.emergency;
+            nviol += u.violations.size();
+            ++rep.updates;
+            if (u.emergency) ++rep.emergency_updates;
+            rep.seconds_updates += u.counters.seconds;
+            rep.flips += c.flips;
+            rep.insertions += c.insertions;
+            rep.removals += c.removals;
+            rep.samples_inserted += c.samples_inserted;
+            rep.samples_deleted += c.samples_deleted;
+            if (options.check_invariants) {
+                InvariantOptions io;
+                io.self_intersections = false;  // measured at every unit below
+                io.empty_balls_soft = true;
+                const InvariantReport inv = dm.check_invariants(io);
+                rep.nonempty_balls_max = std::max(rep.nonempty_balls_max, inv.nonempty_balls);
+                rep.nonempty_balls_total += inv.nonempty_balls;
+                if (!inv.ok) {
+                    ++rep.invariant_failures;
+                    if (rep.first_invariant_failures.size() < 10)
+                        rep.first_invariant_failures.push_back("t=" + std::to_string(t) + ": " + inv.failures.front());
+                }
+            }
+        }
+        measure(t, c, due, emergency, nviol);
+    }
+    for (const auto& v : dm.violations()) ++rep.violations[std::string(to_string(v.kind))];
+    rep.seconds_total = std::chrono::duration<double>(Clock::now() - t_start).count();
+    return rep;
+}
+
+std::string log_csv(const DeformRunReport& report) {
+    std::ostringstream out;
+    out.precision(9);
+    bool header = false;
+    for (const DeformLogRow& r : report.log) {
+        const auto cols = flatten(r.metrics);
+        if (!header) {
+            for (const auto& [name, v] : cols) out << name << ',';
+            out << "update,emergency,flips,insertions,removals,samples_inserted,samples_deleted,violations,"
+                   "update_seconds\n";
+            header = true;
+        }
+        for (const auto& [name, v] : cols) {
+            if (std::isfinite(v)) out << v;
+            out << ',';
+        }
+        const UpdateCounters& c = r.counters;
+        out << int(r.update) << ',' << int(r.emergency) << ',' << c.flips << ',' << c.insertions << ','
+            << c.removals << ',' << c.samples_inserted << ',' << c.samples_deleted << ',' << r.violations << ','
+            << c.seconds << '\n';
+    }
+    return out.str();
+}
+
+}  // namespace dynmesh

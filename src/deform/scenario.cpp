@@ -1,0 +1,1017 @@
+#include "dynmesh/deform/scenario.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/reconstruct/restricted_delaunay.hpp"
+#include "dynmesh/shapes/analytic.hpp"
+
+namespace dynmesh {
+
+// ---- profiles ------------------------------------------------------------------------------
+
+double cycle_profile(double u) { return 0.5 * (1.0 - std::cos(2.0 * kPi * u)); }
+double swing_profile(double u) { return std::sin(2.0 * kPi * u); }
+
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/// Quintic smoothstep on [0, 1], clamped outside (C2 at both ends).
+double smoothstep5(double x) {
+    if (x <= 0) return 0;
+    if (x >= 1) return 1;
+    return x * x * x * (x * (6.0 * x - 15.0) + 10.0);
+}
+
+std::string fmt(double x) {
+    std::ostringstream os;
+    os.precision(4);
+    os << x;
+    return os.str();
+}
+
+void check_positive(const char* who, const char* what, double x) {
+    if (!(std::isfinite(x) && x > 0))
+        throw InvalidInput(std::string(who) + ": " + what + " must be positive and finite (got " +
+                           fmt(x) + ")");
+}
+
+Vec3 unit_axis(const char* who, const Vec3& axis) {
+    const double n = norm(axis);
+    if (!(std::isfinite(n) && n > 0))
+        throw InvalidInput(std::string(who) + ": the axis must be a non-zero finite vector");
+    return axis / n;
+}
+
+/// Common part of the warps: the path parameter u = rate * t.
+class CyclicWarp : public Warp {
+public:
+    CyclicWarp(const char* who, const Point3& center, double rate) : center_(center), rate_(rate) {
+        check_positive(who, "the rate", rate);
+        if (!is_finite(center)) throw InvalidInput(std::string(who) + ": the centre is not finite");
+    }
+
+protected:
+    [[nodiscard]] double u(double t) const { return rate_ * t; }
+    Point3 center_;
+    double rate_;
+};
+
+class PulseWarp final : public CyclicWarp {
+public:
+    PulseWarp(const Point3& c, double max_scale, double rate)
+        : CyclicWarp("make_pulse_warp", c, rate), amp_(max_scale - 1.0) {
+        check_positive("make_pulse_warp", "max_scale", max_scale);
+    }
+    [[nodiscard]] std::string name() const override { return "pulse"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double f = 1.0 + amp_ * cycle_profile(u(t));
+        if (f == 1.0) return x;
+        return center_ + (x - center_) * f;
+    }
+
+private:
+    double amp_;
+};
+
+class StretchWarp final : public CyclicWarp {
+public:
+    StretchWarp(const Point3& c, const Vec3& axis, double max_stretch, double rate)
+        : CyclicWarp("make_stretch_warp", c, rate),
+          axis_(unit_axis("make_stretch_warp", axis)),
+          amp_(max_stretch - 1.0) {
+        check_positive("make_stretch_warp", "max_stretch", max_stretch);
+    }
+    [[nodiscard]] std::string name() const override { return "stretch"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double g = amp_ * cycle_profile(u(t));  // f - 1
+        if (g == 0.0) return x;
+        return x + axis_ * (dot(x - center_, axis_) * g);
+    }
+
+private:
+    Vec3 axis_;
+    double amp_;
+};
+
+/// Rotation of d about the unit axis k by the angle with cosine c and sine s (Rodrigues).
+Vec3 rotate(const Vec3& d, const Vec3& k, double c, double s) {
+    const Vec3 par = k * dot(k, d);
+    const Vec3 perp = d - par;
+    return par + perp * c + cross(k, perp) * s;
+}
+
+class TwistWarp final : public CyclicWarp {
+public:
+    TwistWarp(const Point3& c, const Vec3& axis, double half_length, double end_angle, double rate)
+        : CyclicWarp("make_twist_warp", c, rate),
+          axis_(unit_axis("make_twist_warp", axis)),
+          k_(end_angle / half_length) {
+        check_positive("make_twist_warp", "half_length", half_length);
+        check_positive("make_twist_warp", "end_angle", end_angle);
+    }
+    [[nodiscard]] std::string name() const override { return "twist"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double w = swing_profile(u(t));
+        if (w == 0.0) return x;
+        const Vec3 d = x - center_;
+        const double theta = w * k_ * dot(d, axis_);
+        return center_ + rotate(d, axis_, std::cos(theta), std::sin(theta));
+    }
+
+private:
+    Vec3 axis_;
+    double k_;  // end angle per unit length along the axis
+};
+
+class BendWarp final : public CyclicWarp {
+public:
+    BendWarp(const Point3& c, const Vec3& axis, const Vec3& toward, double half_length,
+             double max_turn, double pre_stretch, double rate)
+        : CyclicWarp("make_bend_warp", c, rate), pre_stretch_(pre_stretch) {
+        check_positive("make_bend_warp", "half_length", half_length);
+        check_positive("make_bend_warp", "max_turn", max_turn);
+        if (!(std::isfinite(pre_stretch) && pre_stretch >= 1.0))
+            throw InvalidInput("make_bend_warp: pre_stretch must be >= 1 and finite (got " +
+                               fmt(pre_stretch) + ")");
+        if (!(max_turn < 2.0 * kPi))
+            throw InvalidInput("make_bend_warp: max_turn must be < 2 pi (got " + fmt(max_turn) +
+                               ")");
+        e1_ = unit_axis("make_bend_warp", axis);
+        const Vec3 b = toward - e1_ * dot(toward, e1_);
+        if (!(norm(b) > 1e-9 * std::max(1.0, norm(toward))))
+            throw InvalidInput("make_bend_warp: 'toward' must not be parallel to the axis");
+        e2_ = normalized(b);
+        e3_ = cross(e1_, e2_);
+        kmax_ = max_turn / (2.0 * half_length * pre_stretch);
+    }
+    [[nodiscard]] std::string name() const override { return "bend"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double q = cycle_profile(u(t));
+        double sigma = 1.0, k = 0.0;
+        if (pre_stretch_ > 1.0) {
+            sigma = 1.0 + (pre_stretch_ - 1.0) * smoothstep5(2.0 * q);
+            k = kmax_ * smoothstep5(2.0 * q - 1.0);
+        } else {
+            k = kmax_ * q;
+        }
+        if (sigma == 1.0 && k == 0.0) return x;
+        const Vec3 d = x - center_;
+        const double a = dot(d, e1_) * sigma, b = dot(d, e2_), cc = dot(d, e3_);
+        double a2 = a, b2 = b;
+        if (k != 0.0) {
+            const double phi = k * a;
+            const double sp = std::sin(phi), cp = std::cos(phi), sh = std::sin(0.5 * phi);
+            a2 = sp / k - b * sp;
+            b2 = b * cp + 2.0 * sh * sh / k;
+        }
+        return center_ + e1_ * a2 + e2_ * b2 + e3_ * cc;
+    }
+
+private:
+    double pre_stretch_;
+    Vec3 e1_, e2_, e3_;
+    double kmax_ = 0;
+};
+
+class RotationWarp final : public CyclicWarp {
+public:
+    RotationWarp(const Point3& c, const Vec3& axis, double rate)
+        : CyclicWarp("make_rotation_warp", c, rate), axis_(unit_axis("make_rotation_warp", axis)) {}
+    [[nodiscard]] std::string name() const override { return "rotate"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double theta = 2.0 * kPi * u(t);
+        if (theta == 0.0) return x;
+        return center_ + rotate(x - center_, axis_, std::cos(theta), std::sin(theta));
+    }
+
+private:
+    Vec3 axis_;
+};
+
+// ---- a uniform hash grid -------------------------------------------------------------------
+
+/// Points in cubic cells of side `cell`, found through an open-addressing table keyed by
+/// the integer cell coordinates; the points of a cell form a linked list. Insert-only.
+class HashGrid {
+public:
+    HashGrid(double cell, std::size_t expected) : cell_(cell), inv_(1.0 / cell) {
+        std::size_t n = 16;
+        while (n < 2 * expected + 16) n *= 2;
+        table_.assign(n, Slot{});
+        mask_ = n - 1;
+        pts_.reserve(expected);
+        ids_.reserve(expected);
+        next_.reserve(expected);
+    }
+
+    void insert(std::uint32_t id, const Point3& p) {
+        const auto c = coords(p);
+        if (2 * (cells_ + 1) > table_.size()) grow();
+        Slot& s = find_or_add(c[0], c[1], c[2]);
+        const auto e = static_cast<std::uint32_t>(pts_.size());
+        pts_.push_back(p);
+        ids_.push_back(id);
+        next_.push_back(s.head);
+        s.head = e;
+        for (int i = 0; i < 3; ++i) {
+            lo_[i] = std::min(lo_[i], c[i]);
+            hi_[i] = std::max(hi_[i], c[i]);
+        }
+    }
+    [[nodiscard]] std::size_t size() const { return pts_.size(); }
+
+    /// Calls f(id, squared distance) for every point within distance r of p (closed ball).
+    template <class F>
+    void for_each_within(const Point3& p, double r, F&& f) const {
+        if (pts_.empty()) return;
+        const double r2 = r * r;
+        const auto a = coords(p - Vec3{r, r, r}), b = coords(p + Vec3{r, r, r});
+        std::array<std::int64_t, 3> l{}, h{};
+        for (int i = 0; i < 3; ++i) {
+            l[i] = std::max(a[i], lo_[i]);
+            h[i] = std::min(b[i], hi_[i]);
+            if (l[i] > h[i]) return;
+        }
+        for (std::int64_t x = l[0]; x <= h[0]; ++x)
+            for (std::int64_t y = l[1]; y <= h[1]; ++y)
+                for (std::int64_t z = l[2]; z <= h[2]; ++z) {
+                    const Slot* s = find(x, y, z);
+                    if (s == nullptr) continue;
+                    for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
+                        const double d2 = sqdistance(pts_[e], p);
+                        if (d2 <= r2) f(ids_[e], d2);
+                    }
+                }
+    }
+
+    /// True when some point lies within distance r of q (closed ball).
+    [[nodiscard]] bool any_within(const Point3& q, double r) const {
+        if (pts_.empty()) return false;
+        const double r2 = r * r;
+        const auto a = coords(q - Vec3{r, r, r}), b = coords(q + Vec3{r, r, r});
+        for (std::int64_t x = std::max(a[0], lo_[0]); x <= std::min(b[0], hi_[0]); ++x)
+            for (std::int64_t y = std::max(a[1], lo_[1]); y <= std::min(b[1], hi_[1]); ++y)
+                for (std::int64_t z = std::max(a[2], lo_[2]); z <= std::min(b[2], hi_[2]); ++z) {
+                    const Slot* s = find(x, y, z);
+                    if (s == nullptr) continue;
+                    for (std::uint32_t e = s->head; e != kNone; e = next_[e])
+                        if (sqdistance(pts_[e], q) <= r2) return true;
+                }
+        return false;
+    }
+
+    /// Squared distance from q to the nearest point whose id differs from `exclude`, exact
+    /// when it is > stop_sq; otherwise some value <= stop_sq (the search stops early).
+    /// Infinity when there is no such point.
+    [[nodiscard]] double nearest_sq(const Point3& q, double stop_sq = -1.0,
+                                    std::uint32_t exclude = kNone) const {
+        return nearest(q, stop_sq, exclude).first;
+    }
+    /// As nearest_sq, with the id of the point found (kNone for none).
+    [[nodiscard]] std::pair<double, std::uint32_t> nearest(const Point3& q, double stop_sq = -1.0,
+                                                           std::uint32_t exclude = kNone) const {
+        double best = std::numeric_limits<double>::infinity();
+        std::uint32_t best_id = kNone;
+        if (pts_.empty()) return {best, best_id};
+        const auto c = coords(q);
+        for (std::int64_t k = 0;; ++k) {
+            // Visit the cells at Chebyshev distance exactly k from c (clipped to the occupied
+            // box).
+            bool any_inside = false;
+            for (std::int64_t dx = -k; dx <= k; ++dx) {
+                const std::int64_t x = c[0] + dx;
+                if (x < lo_[0] || x > hi_[0]) continue;
+                for (std::int64_t dy = -k; dy <= k; ++dy) {
+                    const std::int64_t y = c[1] + dy;
+                    if (y < lo_[1] || y > hi_[1]) continue;
+                    const bool face = (dx == -k || dx == k || dy == -k || dy == k);
+                    const std::int64_t step = face ? 1 : std::max<std::int64_t>(2 * k, 1);
+                    for (std::int64_t dz = -k; dz <= k; dz += step) {
+                        const std::int64_t z = c[2] + dz;
+                        if (z < lo_[2] || z > hi_[2]) continue;
+                        any_inside = true;
+                        const Slot* s = find(x, y, z);
+                        if (s == nullptr) continue;
+                        for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
+                            if (ids_[e] == exclude) continue;
+                            const double d2 = sqdistance(pts_[e], q);
+                            if (d2 < best || (d2 == best && ids_[e] < best_id)) {
+                                best = d2;
+                                best_id = ids_[e];
+                            }
+                        }
+                    }
+                }
+            }
+            // Every point not yet seen is at distance >= k * cell.
+            const double seen = static_cast<double>(k) * cell_;
+            if (best <= seen * seen || best <= stop_sq) return {best, best_id};
+            if (!any_inside && covers_box(c, k)) return {best, best_id};
+        }
+    }
+
+private:
+    struct Slot {
+        std::int64_t x = 0, y = 0, z = 0;
+        std::uint32_t head = kNone;
+        bool used = false;
+    };
+
+    [[nodiscard]] std::array<std::int64_t, 3> coords(const Point3& p) const {
+        auto f = [&](double v) {
+            const double c = std::floor(v * inv_);
+            return static_cast<std::int64_t>(std::clamp(c, -4e15, 4e15));
+        };
+        return {f(p.x), f(p.y), f(p.z)};
+    }
+    [[nodiscard]] std::size_t hash(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+        h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+        h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+        h ^= h >> 31;
+        h *= 0xD6E8FEB86659FD93ull;
+        h ^= h >> 32;
+        return static_cast<std::size_t>(h) & mask_;
+    }
+    [[nodiscard]] const Slot* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
+            const Slot& s = table_[i];
+            if (!s.used) return nullptr;
+            if (s.x == x && s.y == y && s.z == z) return &s;
+        }
+    }
+    Slot& find_or_add(std::int64_t x, std::int64_t y, std::int64_t z) {
+        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
+            Slot& s = table_[i];
+            if (!s.used) {
+                s = Slot{x, y, z, kNone, true};
+                ++cells_;
+                return s;
+            }
+            if (s.x == x && s.y == y && s.z == z) return s;
+        }
+    }
+    void grow() {
+        std::vector<Slot> old = std::move(table_);
+        table_.assign(old.size() * 2, Slot{});
+        mask_ = table_.size() - 1;
+        for (const Slot& s : old) {
+            if (!s.used) continue;
+            for (std::size_t i = hash(s.x, s.y, s.z);; i = (i + 1) & mask_)
+                if (!table_[i].used) {
+                    table_[i] = s;
+                    break;
+                }
+        }
+    }
+    /// True when the cube of cells at Chebyshev distance <= k from c contains the box of
+    /// occupied cells.
+    [[nodiscard]] bool covers_box(const std::array<std::int64_t, 3>& c, std::int64_t k) const {
+        for (int i = 0; i < 3; ++i)
+            if (c[i] - k > lo_[i] || c[i] + k < hi_[i]) return false;
+        return true;
+    }
+
+    double cell_, inv_;
+    std::vector<Slot> table_;
+    std::size_t mask_ = 0, cells_ = 0;
+    std::vector<Point3> pts_;
+    std::vector<std::uint32_t> ids_, next_;
+    std::array<std::int64_t, 3> lo_{INT64_MAX, INT64_MAX, INT64_MAX};
+    std::array<std::int64_t, 3> hi_{INT64_MIN, INT64_MIN, INT64_MIN};
+};
+
+/// A cell size for n points spread over a surface with this bounding box: about the mean
+/// spacing of a sphere-like surface.
+double surface_cell(const Bbox3& box, std::size_t n) {
+    const double d = box.diagonal();
+    const double c = d / std::sqrt(static_cast<double>(std::max<std::size_t>(n, 1)));
+    return c > 0 && std::isfinite(c) ? c : 1.0;
+}
+
+Bbox3 bbox_of(std::span<const Point3> pts) {
+    Bbox3 b;
+    for (const Point3& p : pts) b.extend(p);
+    return b;
+}
+
+HashGrid grid_of(std::span<const Point3> pts, double cell) {
+    HashGrid g(cell, pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) g.insert(static_cast<std::uint32_t>(i), pts[i]);
+    return g;
+}
+
+// ---- scenario construction -----------------------------------------------------------------
+
+const std::vector<std::string>& analytic_names() {
+    static const std::vector<std::string> names{"pulse", "stretch", "twist", "bend", "boomerang",
+                                                "rotate"};
+    return names;
+}
+const std::vector<std::string>& warp_names() {
+    static const std::vector<std::string> names{"bend", "twist", "pulse", "stretch", "rotate"};
+    return names;
+}
+std::string joined(const std::vector<std::string>& v, const char* sep = ", ") {
+    std::string s;
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+    return s;
+}
+
+/// Angle-weighted vertex normals of a closed mesh (no deleted elements).
+std::vector<Vec3> vertex_normals(const SurfaceMesh& mesh) {
+    std::vector<Vec3> n(mesh.vertices_size(), Vec3{});
+    for (const Face f : mesh.faces()) {
+        const auto v = mesh.face_vertices(f);
+        const Point3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+        const Vec3 fn = triangle_normal(a, b, c);
+        n[v[0].idx()] += fn * angle_at(c, a, b);
+        n[v[1].idx()] += fn * angle_at(a, b, c);
+        n[v[2].idx()] += fn * angle_at(b, c, a);
+    }
+    for (Vec3& x : n) x = normalized(x);
+    return n;
+}
+
+/// Drops the vertices no face uses (keeping the others' order).
+SurfaceMesh without_isolated_vertices(const SurfaceMesh& mesh) {
+    bool any = false;
+    for (const Vertex v : mesh.vertices()) any = any || mesh.is_isolated(v);
+    if (!any && !mesh.has_garbage()) return mesh;
+    const TriangleSoup soup = mesh.to_soup();
+    std::vector<std::uint32_t> map(soup.points.size(), kNone);
+    for (const auto& t : soup.triangles)
+        for (std::uint32_t i : t) map[i] = 0;
+    TriangleSoup out;
+    for (std::size_t i = 0; i < soup.points.size(); ++i)
+        if (map[i] == 0) {
+            map[i] = static_cast<std::uint32_t>(out.points.size());
+            out.points.push_back(soup.points[i]);
+        }
+    out.triangles = soup.triangles;
+    for (auto& t : out.triangles)
+        for (std::uint32_t& i : t) i = map[i];
+    return SurfaceMesh::from_soup(out);
+}
+
+/// One 1-to-4 midpoint subdivision of a closed mesh (no deleted elements). The geometry is
+/// unchanged (new vertices lie on the old edges); old vertices keep their indices and the
+/// midpoints follow. normals (one per vertex) is extended with the normalised mean of the
+/// two end normals at every midpoint.
+SurfaceMesh subdivided(const SurfaceMesh& mesh, std::vector<Vec3>& normals) {
+    TriangleSoup soup = mesh.to_soup();
+    const auto n = static_cast<std::uint64_t>(soup.points.size());
+    std::unordered_map<std::uint64_t, std::uint32_t> mid;
+    mid.reserve(soup.triangles.size() * 2);
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+        const std::uint64_t key = std::min(a, b) * n + std::max(a, b);
+        const auto [it, fresh] = mid.emplace(key, static_cast<std::uint32_t>(soup.points.size()));
+        if (fresh) {
+            soup.points.push_back((soup.points[a] + soup.points[b]) * 0.5);
+            Vec3 nm = normalized(normals[a] + normals[b]);
+            if (nm == Vec3{}) nm = normals[a];
+            normals.push_back(nm);
+        }
+        return it->second;
+    };
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    tris.reserve(4 * soup.triangles.size());
+    for (const auto& t : soup.triangles) {
+        const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]),
+                            ca = midpoint(t[2], t[0]);
+        tris.push_back({t[0], ab, ca});
+        tris.push_back({t[1], bc, ab});
+        tris.push_back({t[2], ca, bc});
+        tris.push_back({ab, bc, ca});
+    }
+    soup.triangles = std::move(tris);
+    return SurfaceMesh::from_soup(soup);
+}
+
+int horizon_of(int steps, double speed) {
+    const double q = static_cast<double>(steps) / speed;
+    const double r = std::round(q);
+    const double h = std::abs(q - r) <= 1e-9 * std::max(1.0, q) ? r : std::ceil(q);
+    if (!(h <= static_cast<double>(INT_MAX)))
+        throw InvalidInput("make_scenario: steps / speed = " + fmt(q) +
+                           " time units is too many (speed too small)");
+    return std::max(1, static_cast<int>(h));
+}
+
+/// Largest |d phi / dt| over the pool points and the phases of one period (see
+/// Scenario::lambda), without the safety factor.
+double max_speed(const Warp& warp, double rate, std::span<const Point3> pool) {
+    constexpr int kPhases = 64;
+    constexpr double kDu = 1e-4;
+    const double dt = kDu / rate;
+    std::vector<std::pair<double, std::uint32_t>> best(pool.size(), {0.0, 0u});
+    for (std::size_t i = 0; i < pool.size(); ++i) {
+        for (int j = 0; j < kPhases; ++j) {
+            const double t = (static_cast<double>(j) / kPhases) / rate;
+            const double v =
+                distance(warp.apply(t + dt, pool[i]), warp.apply(t - dt, pool[i])) / (2.0 * dt);
+            if (v > best[i].first) best[i] = {v, static_cast<std::uint32_t>(j)};
+        }
+    }
+    std::vector<std::uint32_t> order(pool.size());
+    std::iota(order.begin(), order.end(), 0u);
+    const std::size_t top = std::min<std::size_t>(16, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(),
+                      [&](std::uint32_t a, std::uint32_t b) {
+                          return best[a].first > best[b].first ||
+                                 (best[a].first == best[b].first && a < b);
+                      });
+    double vmax = 0;
+    for (const auto& b : best) vmax = std::max(vmax, b.first);
+    for (std::size_t r = 0; r < top; ++r) {
+        const std::uint32_t i = order[r];
+        const double u0 = static_cast<double>(best[i].second) / kPhases;
+        for (int k = -64; k <= 64; ++k) {
+            const double t = (u0 + static_cast<double>(k) / (64.0 * kPhases)) / rate;
+            const double v =
+                distance(warp.apply(t + dt, pool[i]), warp.apply(t - dt, pool[i])) / (2.0 * dt);
+            vmax = std::max(vmax, v);
+        }
+    }
+    return vmax;
+}
+
+/// Fills the fields every scenario derives from reference, initial, warp and rate.
+void finish(Scenario& s) {
+    const std::vector<Point3>& pool = s.reference.positions();
+    s.length_scale = bbox_of(pool).diagonal();
+    std::vector<Point3> p0;
+    p0.reserve(s.initial.size());
+    for (std::uint32_t i : s.initial) p0.push_back(pool[i]);
+
+    s.h0 = covering_radius(reference_probes(s.reference), p0);
+
+    // Typical spacing: median nearest-neighbour distance within P(0).
+    const HashGrid g0 = grid_of(p0, surface_cell(bbox_of(p0), p0.size()));
+    std::vector<double> nn(p0.size());
+    for (std::size_t i = 0; i < p0.size(); ++i)
+        nn[i] = std::sqrt(g0.nearest_sq(p0[i], -1.0, static_cast<std::uint32_t>(i)));
+    const auto mid = nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2);
+    std::nth_element(nn.begin(), mid, nn.end());
+    s.spacing0 = *mid;
+    if (!(s.spacing0 > 0))
+        throw InvalidInput("make_scenario: '" + s.name +
+                           "': more than half of the initial samples coincide with another one");
+
+    s.density_radius = 4.0 * s.spacing0;
+    const HashGrid gd = grid_of(p0, s.density_radius);
+    s.initial_density.assign(pool.size(), 0);
+    for (std::size_t i = 0; i < pool.size(); ++i) {
+        std::uint32_t n = 0;
+        gd.for_each_within(pool[i], s.density_radius, [&](std::uint32_t, double) { ++n; });
+        s.initial_density[i] = n;
+    }
+
+    s.lambda = 1.05 * max_speed(*s.warp, s.rate, pool);
+}
+
+Scenario analytic_scenario(const std::string& name, const ScenarioOptions& o, double rate) {
+    Scenario s;
+    const std::string key = name == "boomerang" ? "bend" : name;
+    s.name = key;
+    s.rate = rate;
+    const Point3 origin{0, 0, 0};
+    std::string shape, motion;
+    if (key == "twist") {
+        s.surface0 = std::make_unique<Torus>(origin, 5.0, 3.0);
+        s.warp = make_twist_warp(origin, {1, 0, 0}, 8.0, kPi / 4.0, rate);
+        shape = "torus R=5 r=3 (axis z, reach 2)";
+        motion = "twist about the x axis, end angle +-pi/4 at x=+-8 (ends turn by up to +-pi/2 "
+                 "relative to each other), swinging both ways";
+    } else {
+        s.surface0 = std::make_unique<Sphere>(origin, 1.0);
+        shape = "unit sphere";
+        if (key == "pulse") {
+            s.warp = make_pulse_warp(origin, 1.5, rate);
+            motion = "radius 1 -> 1.5 -> 1";
+        } else if (key == "stretch") {
+            s.warp = make_stretch_warp(origin, {1, 0, 0}, 3.0, rate);
+            motion = "stretched along x to a 3:1:1 ellipsoid and back";
+        } else if (key == "bend") {
+            s.warp = make_bend_warp(origin, {1, 0, 0}, {0, 1, 0}, 1.0, 2.0 * kPi / 3.0, 3.0, rate);
+            motion = "stretched along x to 3:1:1, bent about z into an arc turning by 2pi/3 "
+                     "(radius 2.86), then back";
+        } else {  // rotate
+            s.warp = make_rotation_warp(origin, {1, 2, 3}, rate);
+            motion = "one rigid turn about (1,2,3)";
+        }
+    }
+    const std::size_t m = o.samples * o.pool_factor;
+    const std::vector<Point3> candidates = s.surface0->sample_uniform(m, o.seed);
+    RestrictedDelaunayResult rdt;
+    try {
+        rdt = restricted_delaunay_with_report(candidates, *s.surface0);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("make_scenario: '" + name + "': a pool of " + std::to_string(m) +
+                           " points is too sparse to mesh " + shape + " (" + e.what() +
+                           "); use more samples");
+    }
+    s.reference = std::move(rdt.mesh);
+    const long long expected_euler = key == "twist" ? 0 : 2;
+    MeshCheckOptions co;
+    co.require_closed = true;
+    co.check_degenerate = false;
+    const MeshCheckReport rep = check_mesh(s.reference, co);
+    if (!rep.ok() || rep.euler != expected_euler || rep.components != 1)
+        throw InvalidInput("make_scenario: '" + name + "': a pool of " + std::to_string(m) +
+                           " points is too sparse to mesh " + shape +
+                           " (restricted Delaunay triangulation: Euler characteristic " +
+                           std::to_string(rep.euler) + ", expected " +
+                           std::to_string(expected_euler) + "); use more samples");
+    // Pool points the RDT left out are dropped; P(0) = the first `samples` candidates kept.
+    const std::vector<std::uint32_t>& vs = rdt.report.vertex_sample;
+    for (std::size_t v = 0; v < vs.size(); ++v)
+        if (vs[v] < o.samples) s.initial.push_back(static_cast<std::uint32_t>(v));
+    s.normals0.reserve(s.reference.n_vertices());
+    for (const Point3& p : s.reference.positions()) s.normals0.push_back(s.surface0->normal(p));
+    s.edits = o.edits.value_or(false);
+    s.description = shape + ", " + motion + "; pool " + std::to_string(s.pool_size()) +
+                    " points (" + std::to_string(m - s.pool_size()) + " dropped by the RDT), " +
+                    std::to_string(s.initial.size()) + " initial samples";
+    return s;
+}
+
+Scenario mesh_scenario(const std::string& path, const ScenarioOptions& o, double rate) {
+    const std::string warp = o.warp.empty() ? "bend" : o.warp;
+    if (std::find(warp_names().begin(), warp_names().end(), warp) == warp_names().end())
+        throw InvalidInput("make_scenario: unknown warp '" + warp + "' (valid: " +
+                           joined(warp_names(), "|") + ")");
+    SurfaceMesh mesh;
+    try {
+        mesh = without_isolated_vertices(read_mesh(path));
+    } catch (const Error& e) {
+        throw InvalidInput("make_scenario: cannot use mesh file '" + path + "': " + e.what());
+    }
+    MeshCheckOptions co;
+    co.require_closed = true;
+    co.check_degenerate = false;
+    const MeshCheckReport rep = check_mesh(mesh, co);
+    if (!rep.ok())
+        throw InvalidInput("make_scenario: mesh file '" + path +
+                           "' is not a closed oriented 2-manifold (" +
+                           std::to_string(rep.boundary_edges) + " boundary edges, " +
+                           std::to_string(rep.n_problems) + " problems):\n" + rep.summary("  "));
+    if (mesh.n_vertices() < 100)
+        throw InvalidInput("make_scenario: mesh file '" + path + "' has only " +
+                           std::to_string(mesh.n_vertices()) +
+                           " vertices; at least 100 are needed");
+
+    Scenario s;
+    s.name = "mesh:" + std::filesystem::path(path).filename().string() + "+" + warp;
+    s.rate = rate;
+    // The pool: the input vertices, plus (flat) midpoint subdivisions of the input until the
+    // pool holds about pool_factor times |P(0)| points, so that there is something to insert
+    // where the surface stretches.
+    const std::size_t nv = mesh.n_vertices();
+    const std::size_t n_init = std::min(o.samples, nv);
+    s.normals0 = vertex_normals(mesh);
+    if (o.samples >= nv) s.initial_mesh = mesh;  // triangulates P(0) = every input vertex
+    int levels = 0;
+    while (levels < 3 && 2 * mesh.n_vertices() < o.pool_factor * n_init) {
+        mesh = subdivided(mesh, s.normals0);
+        ++levels;
+    }
+    s.reference = std::move(mesh);
+    if (o.samples >= nv) {
+        s.initial.resize(nv);
+        std::iota(s.initial.begin(), s.initial.end(), 0u);
+    } else {  // partial Fisher-Yates
+        std::vector<std::uint32_t> idx(nv);
+        std::iota(idx.begin(), idx.end(), 0u);
+        Rng rng(o.seed);
+        for (std::size_t i = 0; i < o.samples; ++i) {
+            const std::size_t j = i + static_cast<std::size_t>(rng.below(nv - i));
+            std::swap(idx[i], idx[j]);
+        }
+        s.initial.assign(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(o.samples));
+        std::sort(s.initial.begin(), s.initial.end());
+    }
+
+    // The frame of the bounding box: e1 longest extent, e2 the second.
+    const Bbox3 box = bbox_of(s.reference.positions());
+    const Point3 c = (box.min + box.max) * 0.5;
+    std::array<int, 3> ax{0, 1, 2};
+    const Vec3 ext = box.max - box.min;
+    std::stable_sort(ax.begin(), ax.end(), [&](int a, int b) { return ext[a] > ext[b]; });
+    Vec3 e1{}, e2{};
+    e1[static_cast<std::size_t>(ax[0])] = 1;
+    e2[static_cast<std::size_t>(ax[1])] = 1;
+    const double half_l = 0.5 * ext[static_cast<std::size_t>(ax[0])];
+    const double half_w = std::max(0.5 * ext[static_cast<std::size_t>(ax[1])], 1e-12 * half_l);
+    const char* names = "xyz";
+    const std::string e1n(1, names[ax[0]]), e2n(1, names[ax[1]]);
+    std::string motion;
+    if (warp == "pulse") {
+        s.warp = make_pulse_warp(c, 1.5, rate);
+        motion = "scaled 1 -> 1.5 -> 1 about the bbox centre";
+    } else if (warp == "stretch") {
+        s.warp = make_stretch_warp(c, e1, 3.0, rate);
+        motion = "stretched x3 along " + e1n + " and back";
+    } else if (warp == "twist") {
+        s.warp = make_twist_warp(c, e1, half_l, kPi / 4.0, rate);
+        motion = "twisted about " + e1n + ", end angle +-pi/4 at +-" + fmt(half_l);
+    } else if (warp == "bend") {
+        const double turn = std::min(2.0 * kPi / 3.0, 2.0 * half_l / (1.5 * half_w));
+        s.warp = make_bend_warp(c, e1, e2, half_l, turn, 1.0, rate);
+        motion = "bent along " + e1n + " towards +" + e2n + ", turning by " + fmt(turn) +
+                 " rad (radius " + fmt(2.0 * half_l / turn) + ", half-width " + fmt(half_w) +
+                 ")";
+    } else {
+        s.warp = make_rotation_warp(c, Vec3{1, 1, 1}, rate);
+        motion = "one rigid turn about (1,1,1)";
+    }
+    s.edits = o.edits.value_or(true);
+    s.description = std::filesystem::path(path).filename().string() + " (" + std::to_string(nv) +
+                    " vertices), " + motion + "; pool " + std::to_string(s.pool_size()) +
+                    " points (" + std::to_string(levels) + " midpoint subdivisions), " +
+                    std::to_string(s.initial.size()) + " initial samples";
+    return s;
+}
+
+}  // namespace
+
+// ---- warp factories ------------------------------------------------------------------------
+
+std::unique_ptr<Warp> make_pulse_warp(const Point3& center, double max_scale, double rate) {
+    return std::make_unique<PulseWarp>(center, max_scale, rate);
+}
+std::unique_ptr<Warp> make_stretch_warp(const Point3& center, const Vec3& axis,
+                                        double max_stretch, double rate) {
+    return std::make_unique<StretchWarp>(center, axis, max_stretch, rate);
+}
+std::unique_ptr<Warp> make_twist_warp(const Point3& center, const Vec3& axis, double half_length,
+                                      double end_angle, double rate) {
+    return std::make_unique<TwistWarp>(center, axis, half_length, end_angle, rate);
+}
+std::unique_ptr<Warp> make_bend_warp(const Point3& center, const Vec3& axis, const Vec3& toward,
+                                     double half_length, double max_turn, double pre_stretch,
+                                     double rate) {
+    return std::make_unique<BendWarp>(center, axis, toward, half_length, max_turn, pre_stretch,
+                                      rate);
+}
+std::unique_ptr<Warp> make_rotation_warp(const Point3& center, const Vec3& axis, double rate) {
+    return std::make_unique<RotationWarp>(center, axis, rate);
+}
+
+// ---- scenarios -----------------------------------------------------------------------------
+
+std::vector<std::string> scenario_names() { return analytic_names(); }
+
+Scenario make_scenario(const std::string& name, const ScenarioOptions& o) {
+    if (o.samples < 100)
+        throw InvalidInput("make_scenario: samples must be >= 100 (got " +
+                           std::to_string(o.samples) + ")");
+    if (o.steps < 1)
+        throw InvalidInput("make_scenario: steps must be >= 1 (got " + std::to_string(o.steps) +
+                           ")");
+    if (!(std::isfinite(o.speed) && o.speed > 0))
+        throw InvalidInput("make_scenario: speed must be positive and finite (got " +
+                           fmt(o.speed) + ")");
+    if (o.pool_factor < 1) throw InvalidInput("make_scenario: pool_factor must be >= 1 (got 0)");
+    if (o.samples > (std::size_t{1} << 31) / o.pool_factor)
+        throw InvalidInput("make_scenario: samples * pool_factor is too large");
+    const double rate = o.speed / static_cast<double>(o.steps);
+    const int horizon = horizon_of(o.steps, o.speed);
+
+    Scenario s;
+    const auto& names = analytic_names();
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+        const std::string own = name == "boomerang" ? "bend" : name;
+        if (!o.warp.empty() && o.warp != own && o.warp != name)
+            throw InvalidInput("make_scenario: warp '" + o.warp +
+                               "' applies to mesh files only; scenario '" + name +
+                               "' has its own motion (" + own + ")");
+        s = analytic_scenario(name, o, rate);
+    } else {
+        std::error_code ec;
+        if (name.empty() || !std::filesystem::exists(name, ec))
+            throw InvalidInput("make_scenario: unknown scenario '" + name + "' (valid: " +
+                               joined(names) + ", or a path to a closed mesh file " +
+                               joined(readable_mesh_extensions(), " ") + ")");
+        s = mesh_scenario(name, o, rate);
+    }
+    s.time_units = horizon;
+    finish(s);
+    s.description += "; " + std::to_string(s.time_units) + " time units, lambda " +
+                     fmt(s.lambda) + ", h0 " + fmt(s.h0);
+    return s;
+}
+
+// ---- positions, normals --------------------------------------------------------------------
+
+void warp_points(const Scenario& s, double t, std::span<const Point3> x0, std::span<Point3> out) {
+    if (x0.size() != out.size())
+        throw InvalidInput("warp_points: " + std::to_string(x0.size()) + " inputs but " +
+                           std::to_string(out.size()) + " outputs");
+    for (std::size_t i = 0; i < x0.size(); ++i) out[i] = s.warp->apply(t, x0[i]);
+}
+
+std::vector<Point3> pool_positions(const Scenario& s, double t,
+                                   std::span<const std::uint32_t> pool) {
+    const std::vector<Point3>& p = s.reference.positions();
+    std::vector<Point3> out(pool.size());
+    for (std::size_t i = 0; i < pool.size(); ++i) {
+        if (pool[i] >= p.size())
+            throw InvalidInput("pool_positions: pool index " + std::to_string(pool[i]) +
+                               " >= pool size " + std::to_string(p.size()));
+        out[i] = s.warp->apply(t, p[pool[i]]);
+    }
+    return out;
+}
+
+std::vector<Point3> pool_positions(const Scenario& s, double t) {
+    const std::vector<Point3>& p = s.reference.positions();
+    std::vector<Point3> out(p.size());
+    warp_points(s, t, p, out);
+    return out;
+}
+
+std::array<Vec3, 3> warp_jacobian(const Scenario& s, double t, const Point3& x0) {
+    const double h = 1e-6 * (s.length_scale > 0 ? s.length_scale : 1.0);
+    std::array<Vec3, 3> j{};
+    for (std::size_t i = 0; i < 3; ++i) {
+        Vec3 d{};
+        d[i] = h;
+        j[i] = (s.warp->apply(t, x0 + d) - s.warp->apply(t, x0 - d)) / (2.0 * h);
+    }
+    return j;
+}
+
+namespace {
+Vec3 transported_normal(const Scenario& s, double t, std::uint32_t pool, const char* who) {
+    if (pool >= s.pool_size())
+        throw InvalidInput(std::string(who) + ": pool index " + std::to_string(pool) +
+                           " >= pool size " + std::to_string(s.pool_size()));
+    const Vec3& n = s.normals0[pool];
+    const auto j = warp_jacobian(s, t, s.reference.positions()[pool]);
+    return cross(j[1], j[2]) * n.x + cross(j[2], j[0]) * n.y + cross(j[0], j[1]) * n.z;
+}
+}  // namespace
+
+Vec3 surface_normal(const Scenario& s, double t, std::uint32_t pool) {
+    return normalized(transported_normal(s, t, pool, "surface_normal"));
+}
+
+double area_scale(const Scenario& s, double t, std::uint32_t pool) {
+    return norm(transported_normal(s, t, pool, "area_scale"));
+}
+
+// ---- sampling radius -----------------------------------------------------------------------
+
+double covering_radius(std::span<const Point3> probes, std::span<const Point3> samples) {
+    if (probes.empty()) return 0.0;
+    if (samples.empty())
+        throw InvalidInput("covering_radius: " + std::to_string(probes.size()) +
+                           " probes but no sample");
+    const HashGrid g = grid_of(samples, surface_cell(bbox_of(samples), samples.size()));
+    double worst = 0;  // squared
+    // A probe cannot raise the maximum once some sample is within it: try the sample found
+    // for the previous probe first (a hit most of the time for spatially ordered probes).
+    std::uint32_t last = kNone;
+    for (const Point3& q : probes) {
+        if (last != kNone && sqdistance(q, samples[last]) <= worst) continue;
+        const auto [d2, id] = g.nearest(q, worst);
+        worst = std::max(worst, d2);
+        last = id;
+    }
+    return std::sqrt(worst);
+}
+
+std::vector<Point3> reference_probes(const SurfaceMesh& mesh) {
+    std::vector<Point3> out;
+    out.reserve(mesh.n_vertices() + mesh.n_faces());
+    for (const Vertex v : mesh.vertices()) out.push_back(mesh.position(v));
+    for (const Face f : mesh.faces()) {
+        const auto v = mesh.face_vertices(f);
+        out.push_back((mesh.position(v[0]) + mesh.position(v[1]) + mesh.position(v[2])) / 3.0);
+    }
+    return out;
+}
+
+double sampling_radius(const Scenario& s, double t, std::span<const std::uint32_t> live_pool) {
+    SurfaceMesh warped = s.reference;
+    warp_points(s, t, s.reference.positions(), warped.positions());
+    return covering_radius(reference_probes(warped), pool_positions(s, t, live_pool));
+}
+
+// ---- sample edits --------------------------------------------------------------------------
+
+SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::uint32_t> live_pool,
+                              double insert_radius) {
+    SampleEditOptions o;
+    o.insert_radius = insert_radius;
+    return plan_sample_edits(s, t, live_pool, o);
+}
+
+SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::uint32_t> live_pool,
+                              const SampleEditOptions& o) {
+    const char* who = "plan_sample_edits";
+    check_positive(who, "insert_radius", o.insert_radius);
+    check_positive(who, "compress_ratio", o.compress_ratio);
+    check_positive(who, "target_ratio", o.target_ratio);
+    if (o.target_ratio > o.compress_ratio)
+        throw InvalidInput("plan_sample_edits: target_ratio (" + fmt(o.target_ratio) +
+                           ") must not exceed compress_ratio (" + fmt(o.compress_ratio) + ")");
+    const std::size_t m = s.pool_size();
+    std::vector<std::uint32_t> live(live_pool.begin(), live_pool.end());
+    std::sort(live.begin(), live.end());
+    for (std::size_t i = 0; i < live.size(); ++i) {
+        if (live[i] >= m)
+            throw InvalidInput("plan_sample_edits: live pool index " + std::to_string(live[i]) +
+                               " >= pool size " + std::to_string(m));
+        if (i > 0 && live[i] == live[i - 1])
+            throw InvalidInput("plan_sample_edits: live pool index " + std::to_string(live[i]) +
+                               " is listed twice");
+    }
+    const std::vector<Point3> pt = pool_positions(s, t);
+    enum : char { kAbsent = 0, kLive = 1, kInserted = 2 };
+    std::vector<char> state(m, kAbsent);
+    for (std::uint32_t i : live) state[i] = kLive;
+
+    SampleEdits out;
+    // 1. Insertions: greedy in index order.
+    {
+        HashGrid g(o.insert_radius, live.size() + 64);
+        for (std::uint32_t i : live) g.insert(i, pt[i]);
+        for (std::uint32_t i = 0; i < m; ++i) {
+            if (state[i] != kAbsent) continue;
+            if (!g.any_within(pt[i], o.insert_radius)) {
+                out.insert_pool.push_back(i);
+                state[i] = kInserted;
+                g.insert(i, pt[i]);
+            }
+        }
+    }
+    if (!o.deletions || live.size() < 2) return out;
+
+    // 2. Density ratios over live samples and planned insertions.
+    const double rd = s.density_radius;
+    HashGrid gd(rd, live.size() + out.insert_pool.size());
+    for (std::uint32_t i : live) gd.insert(i, pt[i]);
+    for (std::uint32_t i : out.insert_pool) gd.insert(i, pt[i]);
+    std::vector<std::uint32_t> count(m, 0);
+    std::vector<std::uint32_t> candidates;
+    auto ratio = [&](std::uint32_t p) {
+        return static_cast<double>(count[p]) /
+               static_cast<double>(std::max<std::uint32_t>(1, s.initial_density[p]));
+    };
+    for (std::uint32_t p : live) {
+        std::uint32_t n = 0;
+        gd.for_each_within(pt[p], rd, [&](std::uint32_t, double) { ++n; });
+        count[p] = n;
+        if (ratio(p) >= o.compress_ratio) candidates.push_back(p);
+    }
+    if (candidates.empty()) return out;
+    for (std::uint32_t i : out.insert_pool) {  // running counts are kept for insertions too
+        std::uint32_t n = 0;
+        gd.for_each_within(pt[i], rd, [&](std::uint32_t, double) { ++n; });
+        count[i] = n;
+    }
+
+    // 3. Deletions: greedy in index order, with protected keepers.
+    const double keep_r = std::min(s.spacing0, s.h0);
+    const std::size_t max_deleted = live.size() / 2;
+    std::vector<char> gone(m, 0), keep(m, 0);
+    for (std::uint32_t p : candidates) {
+        if (out.delete_pool.size() >= max_deleted) break;
+        if (keep[p] || !(ratio(p) > o.target_ratio)) continue;
+        std::uint32_t q = kNone;
+        double qd = std::numeric_limits<double>::infinity();
+        gd.for_each_within(pt[p], keep_r, [&](std::uint32_t id, double d2) {
+            if (id == p || gone[id]) return;
+            if (d2 < qd || (d2 == qd && id < q)) {
+                qd = d2;
+                q = id;
+            }
+        });
+        if (q == kNone || !(qd < keep_r * keep_r)) continue;
+        gone[p] = 1;
+        keep[q] = 1;
+        out.delete_pool.push_back(p);
+        gd.for_each_within(pt[p], rd, [&](std::uint32_t id, double) {
+            if (count[id] > 0) --count[id];
+        });
+    }
+    return out;
+}
+
+}  // namespace dynmesh
