@@ -42,7 +42,8 @@ struct DeformRunOptions {
     DeformParams params;
     /// Shape, normal deviation, inversions and self-intersections are measured at every time
     /// unit; the sampling radius h and the Hausdorff distance (which warp and search the whole
-    /// reference) every this many units (and at t = 0 and T).
+    /// reference) every this many units (and at t = 0 and T). 0: measure nothing but t = 0
+    /// and T (for counting changes over long runs).
     int measure_every = 1;
     MeasureOptions measure{.hausdorff = true, .self_intersections = true, .sampling_radius = true};
     /// Run DeformingMesh::check_invariants() after every update (reported, never fatal).

@@ -49,7 +49,7 @@ namespace dynmesh {
 class Warp {
 public:
     virtual ~Warp() = default;
-    /// "pulse", "stretch", "twist", "bend" or "rotate".
+    /// "pulse", "stretch", "twist", "bend", "rotate" or "dimple".
     [[nodiscard]] virtual std::string name() const = 0;
     [[nodiscard]] virtual Point3 apply(double t, const Point3& x0) const = 0;
 };
@@ -101,10 +101,34 @@ public:
 [[nodiscard]] std::unique_ptr<Warp> make_rotation_warp(const Point3& center, const Vec3& axis,
                                                        double rate);
 
+/// The bump of the dimple warp: (1 - r^2)^3 for r < 1, else 0 (C2, 1 at r = 0, 0 with its
+/// first two derivatives at r = 1).
+[[nodiscard]] double dimple_bump(double r);
+/// Largest |d dimple_bump / dr|: 6 r (1 - r^2)^2 at r^2 = 1/5, i.e. 24 / (5 sqrt 5).
+inline constexpr double kDimpleBumpSlope = 2.146625258399798;
+/// "dimple" (spec S4, the Section-6 lower-bound motion as a smooth warp): K local excursions.
+/// A point x within `radius` of centre c_k moves by
+///   cycle_profile(u) * dimple_bump(|x - c_k| / radius) * displacements[k]
+/// and every other point stays put: the region around c_k slides out by up to
+/// |displacements[k]| (at c_k itself, at u = 1/2) and comes back, once per period.
+/// The displacement field is Lipschitz with constant
+///   L = max_k |displacements[k]| * kDimpleBumpSlope / radius < 1
+/// (the supports are disjoint balls), so x -> x + w(x) is a diffeomorphism of R^3 at every t.
+/// 	hrow InvalidInput when there is no centre, the two lists differ in length, a centre or
+///        displacement is not finite, radius or rate is not positive and finite, two centres
+///        are closer than 2 radius (overlapping supports), or L >= 1.
+[[nodiscard]] std::unique_ptr<Warp> make_dimple_warp(std::vector<Point3> centers,
+                                                     std::vector<Vec3> displacements,
+                                                     double radius, double rate);
+/// The first n points of the spherical Fibonacci lattice on the unit sphere about the origin:
+/// z_i = 1 - (2 i + 1) / n, longitude i * pi (3 - sqrt 5) (n >= 1; none at a pole).
+[[nodiscard]] std::vector<Point3> fibonacci_sphere(std::size_t n);
+
 // ---- scenarios -----------------------------------------------------------------------------
 
 struct Scenario {
-    /// "pulse", "stretch", "twist", "bend", "rotate", or "mesh:<file name>+<warp>".
+    /// "pulse", "stretch", "twist", "bend", "rotate", "dimple", or
+    /// "mesh:<file name>+<warp>".
     std::string name;
     /// One line on the shape and the motion, with their parameters (for logs).
     std::string description;
@@ -169,7 +193,7 @@ struct ScenarioOptions {
 };
 
 /// The analytic scenario names: "pulse", "stretch", "twist", "bend", "boomerang" (= bend),
-/// "rotate".
+/// "rotate", "dimple".
 [[nodiscard]] std::vector<std::string> scenario_names();
 
 /// Builds a scenario.
@@ -182,6 +206,16 @@ struct ScenarioOptions {
 ///   +y) until its 6-long axis is an arc turning by 2 pi/3 (radius 2.86 > the half-thickness 1),
 ///   then unbent and unstretched.
 /// - "rotate": unit sphere turning once about (1, 2, 3) / |(1, 2, 3)| (rigid; spec S1).
+/// - "dimple": unit sphere with the spec's S4 (Section-6 lower-bound) motion, make_dimple_warp
+///   with, relative to the sampling radius h0 of P(0) (measured first):
+///   radius rho = 2.5 h0, and displacement h0 t_k + (h0 / 4) c_k at centre c_k: a tangential
+///   slide by h0 (about one mesh edge: the vertices of Vert(0) are >= h0 apart) along the
+///   unit tangent t_k, plus an outward lift by h0 / 4 (L = 0.71). The centres are
+///   fibonacci_sphere(K) with K the largest number <= 64 whose lattice points are all at
+///   least 2.2 rho apart (so the supports are disjoint with a margin: K = 16 for 2000
+///   samples); t_k is the east direction at c_k turned towards north by k times the golden
+///   angle. Every surface point moves along a straight segment and back; about half of the
+///   sphere moves and the rest stays put. Samples are never edited.
 /// For these, pool = surface0->sample_uniform(samples * pool_factor, seed), reference =
 /// restricted_delaunay(pool) (pool points the RDT leaves out are dropped), and P(0) = the
 /// first `samples` pool points (itself a uniform sample, by the prefix property).
