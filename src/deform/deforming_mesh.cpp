@@ -523,7 +523,8 @@ struct DeformingMesh::Impl {
     /// compression) lose one vertex, then RefineVert restores the density.
     void spacing_repair() {
         if (!params.spacing_repair) return;
-        if (decimation(1.0 / 3.0) > 0) {
+        // RefineVert may raise R a little after the removals; repeat (rarely more than once).
+        for (int round = 0; round < 4 && decimation(1.0 / 3.0) > 0; ++round) {
             ++cur.spacing_repairs;
             refine_vert();
         }
