@@ -10,6 +10,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/random.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/shapes/analytic.hpp"
@@ -324,6 +325,44 @@ TEST(DeformMonitors, TooFastMotionIsReportedAndRecovered) {
     dm.update();
     const auto inv = dm.check_invariants();
     EXPECT_TRUE(inv.ok) << inv.failures.front();
+}
+
+TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {
+    const auto P0 = sphere_samples(3000, 29);
+    DeformParams params;
+    params.lambda = 1e-3;
+    params.h0 = 0.09;
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh dm(P0, params, {.surface = &sphere});
+    // Push one vertex deep through the surface: its triangles turn inside out.
+    const Vertex v = *dm.mesh().vertices().begin();
+    const SampleId id = dm.sample_of(v);
+    auto pos = P0;
+    pos[id] = P0[id] * 0.5;
+    const auto st = dm.advance(1, pos);
+    bool inverted = false;
+    for (const auto& x : st.violations) inverted |= x.kind == Violation::NormalInverted;
+    EXPECT_TRUE(inverted);
+    EXPECT_TRUE(st.emergency);
+    ASSERT_TRUE(st.update_due);
+    const auto u = dm.update();
+    EXPECT_TRUE(u.emergency);
+    bool rebuilt = false;
+    for (const auto& x : u.violations) rebuilt |= x.kind == Violation::Rebuild;
+    EXPECT_TRUE(rebuilt);
+    // The result is a valid embedded closed mesh again (the dented vertex is not a vertex or
+    // sits in a dent without folds).
+    const auto mc = check_mesh(dm.mesh(), MeshCheckOptions{.require_closed = true});
+    EXPECT_TRUE(mc.ok()) << mc.summary();
+    EXPECT_EQ(count_self_intersections(dm.mesh()), 0u);
+    for (Edge e : dm.mesh().edges()) {
+        const auto& m = dm.mesh();
+        const auto n0 = m.face_vertices(m.face(SurfaceMesh::halfedge(e, 0)));
+        const auto n1 = m.face_vertices(m.face(SurfaceMesh::halfedge(e, 1)));
+        const Vec3 a = triangle_normal_raw(m.position(n0[0]), m.position(n0[1]), m.position(n0[2]));
+        const Vec3 b = triangle_normal_raw(m.position(n1[0]), m.position(n1[1]), m.position(n1[2]));
+        ASSERT_GT(dot(a, b), 0.0) << "folded edge " << e.idx();
+    }
 }
 
 TEST(DeformDeterminism, SameInputSameMesh) {
