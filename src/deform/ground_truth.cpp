@@ -17,39 +17,7 @@ namespace {
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 using Tri = std::array<std::uint32_t, 3>;
 
-double sq_dist_point_segment(const Point3& p, const Point3& a, const Point3& b) {
-    const Vec3 ab = b - a;
-    const double len2 = sqnorm(ab);
-    const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return sqdistance(p, a + ab * t);
-}
 
-/// Squared distance from p to triangle abc by the Voronoi regions of its features (Ericson,
-/// "Real-Time Collision Detection", 5.1.5), as in metrics/hausdorff.cpp.
-double sq_dist_point_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return sqnorm(ap);
-    const Vec3 bp = p - b;
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return sqnorm(bp);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return sqdistance(p, a + ab * (d1 / (d1 - d3)));
-    const Vec3 cp = p - c;
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return sqnorm(cp);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return sqdistance(p, a + ac * (d2 / (d2 - d6)));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-        return sqdistance(p, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
-    const double sum = va + vb + vc;
-    if (!(sum > 0)) {
-        return std::min({sq_dist_point_segment(p, a, b), sq_dist_point_segment(p, b, c),
-                         sq_dist_point_segment(p, a, c)});
-    }
-    return sqdistance(p, a + ab * (vb / sum) + ac * (vc / sum));
-}
 
 /// Longest and mean edge length of a triangle list (each interior edge counted twice).
 std::pair<double, double> edge_stats(std::span<const Point3> pts, std::span<const Tri> tris) {
@@ -233,7 +201,7 @@ private:
         double best = std::numeric_limits<double>::infinity();
         for (std::uint32_t k = begin_[v]; k < begin_[v + 1]; ++k) {
             const Tri& t = tris_[star_[k]];
-            best = std::min(best, sq_dist_point_triangle(q, pts_[t[0]], pts_[t[1]], pts_[t[2]]));
+            best = std::min(best, sq_dist_to_triangle(q, pts_[t[0]], pts_[t[1]], pts_[t[2]]));
             if (best <= stop) break;
         }
         return best;

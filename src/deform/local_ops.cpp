@@ -28,63 +28,10 @@ namespace dynmesh {
 
 namespace {
 
-ClosestPoint make_closest(const Point3& p, const Point3& x, double u, double v, double w) {
-    return {x, u, v, w, distance(p, x)};
-}
 
-/// Closest point of segment ab to p as the parameter t of a + t (b - a), clamped to [0, 1].
-double segment_parameter(const Point3& p, const Point3& a, const Point3& b) {
-    const Vec3 ab = b - a;
-    const double len2 = dot(ab, ab);
-    if (!(len2 > 0)) return 0.0;
-    return std::clamp(dot(p - a, ab) / len2, 0.0, 1.0);
-}
 
 }  // namespace
 
-ClosestPoint closest_point_on_triangle(const Point3& p, const Point3& a, const Point3& b,
-                                       const Point3& c) {
-    // Ericson, "Real-Time Collision Detection", 5.1.5: Voronoi regions of the corners, then
-    // of the edges, else the interior.
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return make_closest(p, a, 1, 0, 0);
-    const Vec3 bp = p - b;
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return make_closest(p, b, 0, 1, 0);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        const double t = d1 / (d1 - d3);
-        return make_closest(p, a + ab * t, 1 - t, t, 0);
-    }
-    const Vec3 cp = p - c;
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return make_closest(p, c, 0, 0, 1);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        const double t = d2 / (d2 - d6);
-        return make_closest(p, a + ac * t, 1 - t, 0, t);
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return make_closest(p, b + (c - b) * t, 0, 1 - t, t);
-    }
-    const double sum = va + vb + vc;
-    if (!(sum > 0) || !std::isfinite(sum)) {
-        // Degenerate triangle: the best of its three edges.
-        const double tab = segment_parameter(p, a, b), tbc = segment_parameter(p, b, c),
-                     tca = segment_parameter(p, c, a);
-        ClosestPoint best = make_closest(p, a + (b - a) * tab, 1 - tab, tab, 0);
-        const ClosestPoint e2 = make_closest(p, b + (c - b) * tbc, 0, 1 - tbc, tbc);
-        const ClosestPoint e3 = make_closest(p, c + (a - c) * tca, tca, 0, 1 - tca);
-        if (e2.distance < best.distance) best = e2;
-        if (e3.distance < best.distance) best = e3;
-        return best;
-    }
-    const double v = vb / sum, w = vc / sum;
-    return make_closest(p, a + ab * v + ac * w, 1 - v - w, v, w);
-}
 
 // ---- local flip with a final emptiness check ---------------------------------------------
 

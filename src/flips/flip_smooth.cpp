@@ -132,29 +132,6 @@ std::unordered_map<std::uint32_t, std::uint32_t> hop_distances(const SurfaceMesh
     return dist;
 }
 
-/// Distance from point x to triangle abc is below rho (conservative test via the closest
-/// point on the triangle).
-double point_triangle_distance(const Point3& x, const Point3& a, const Point3& b, const Point3& c) {
-    // Ericson, Real-Time Collision Detection, closest point on triangle.
-    const Vec3 ab = b - a, ac = c - a, ap = x - a;
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return distance(x, a);
-    const Vec3 bp = x - b;
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return distance(x, b);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return distance(x, a + ab * (d1 / (d1 - d3)));
-    const Vec3 cp = x - c;
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return distance(x, c);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return distance(x, a + ac * (d2 / (d2 - d6)));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return distance(x, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
-    const double denom = 1.0 / (va + vb + vc);
-    return distance(x, a + ab * (vb * denom) + ac * (vc * denom));
-}
 
 }  // namespace
 
@@ -211,8 +188,9 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
             const double rad = distance(cc, a);
             for (Face g : first_outside) {
                 const auto ws = mesh.face_vertices(g);
-                if (point_triangle_distance(cc, mesh.position(ws[0]), mesh.position(ws[1]),
-                                            mesh.position(ws[2])) < rad) {
+                if (closest_point_on_triangle(cc, mesh.position(ws[0]), mesh.position(ws[1]),
+                                              mesh.position(ws[2]))
+                        .distance < rad) {
                     ok = false;
                     break;
                 }

@@ -14,6 +14,7 @@
 #include <boost/iterator/counting_iterator.hpp>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 
 namespace dynmesh {
 namespace {
@@ -71,40 +72,7 @@ using Traits = CGAL::AABB_traits<K, TrianglePrimitive>;
 using Tree = CGAL::AABB_tree<Traits>;
 using Node = CGAL::AABB_node<Traits>;
 
-/// Squared distance from p to segment ab.
-double sq_dist_point_segment(const Point3& p, const Point3& a, const Point3& b) {
-    const Vec3 ab = b - a;
-    const double len2 = sqnorm(ab);
-    const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return sqdistance(p, a + ab * t);
-}
 
-/// Squared distance from p to triangle abc: the closest point by Voronoi regions of the
-/// triangle's features (Ericson, "Real-Time Collision Detection", 5.1.5).
-double sq_dist_point_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return sqnorm(ap);  // vertex a
-    const Vec3 bp = p - b;
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return sqnorm(bp);  // vertex b
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return sqdistance(p, a + ab * (d1 / (d1 - d3)));  // ab
-    const Vec3 cp = p - c;
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return sqnorm(cp);  // vertex c
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return sqdistance(p, a + ac * (d2 / (d2 - d6)));  // ac
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-        return sqdistance(p, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));  // bc
-    const double sum = va + vb + vc;
-    if (!(sum > 0)) {  // degenerate triangle that slipped through the region tests
-        return std::min({sq_dist_point_segment(p, a, b), sq_dist_point_segment(p, b, c),
-                         sq_dist_point_segment(p, a, c)});
-    }
-    return sqdistance(p, a + ab * (vb / sum) + ac * (vc / sum));  // interior
-}
 
 double sq_dist_point_box(const Point3& p, const CGAL::Bbox_3& b) {
     auto axis = [](double x, double lo, double hi) {
@@ -129,7 +97,7 @@ public:
     void intersection(const Point3& q, const TrianglePrimitive& primitive) {
         const auto& t = data_.triangles[primitive.id()];
         const double d =
-            sq_dist_point_triangle(q, data_.points[t[0]], data_.points[t[1]], data_.points[t[2]]);
+            sq_dist_to_triangle(q, data_.points[t[0]], data_.points[t[1]], data_.points[t[2]]);
         best_sq_ = std::min(best_sq_, d);
     }
     [[nodiscard]] bool do_intersect(const Point3& q, const Node& node) const {

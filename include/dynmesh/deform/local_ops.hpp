@@ -22,21 +22,12 @@
 #include <vector>
 
 #include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh {
 
-/// Closest point of triangle abc to p: point = u a + v b + w c with u + v + w = 1, all >= 0
-/// (Ericson's region classification: a coordinate is exactly 0 when the point is on the
-/// opposite edge, two are exactly 0 at a corner).
-struct ClosestPoint {
-    Point3 point;
-    double u = 0, v = 0, w = 0;  ///< barycentric coordinates for a, b, c
-    double distance = 0;         ///< |p - point|
-};
-[[nodiscard]] ClosestPoint closest_point_on_triangle(const Point3& p, const Point3& a,
-                                                     const Point3& b, const Point3& c);
 
 // ---- Add(p, abc) -------------------------------------------------------------------------
 

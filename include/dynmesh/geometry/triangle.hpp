@@ -52,4 +52,23 @@ double dihedral_angle(const Point3& p, const Point3& q, const Point3& r, const P
 Point2 circumcenter(const Point2& a, const Point2& b, const Point2& c);
 double min_angle(const Point2& a, const Point2& b, const Point2& c);
 
+/// Closest point of triangle abc to p: point = u a + v b + w c with u + v + w = 1, all >= 0
+/// (Ericson's region classification: a coordinate is exactly 0 when the point is on the
+/// opposite edge, two are exactly 0 at a corner).
+struct ClosestPoint {
+    Point3 point;
+    double u = 0, v = 0, w = 0;  ///< barycentric coordinates for a, b, c
+    double distance = 0;         ///< |p - point|
+};
+[[nodiscard]] ClosestPoint closest_point_on_triangle(const Point3& p, const Point3& a,
+                                                     const Point3& b, const Point3& c);
+/// The closest point of segment ab to p as the parameter t of a + t (b - a), in [0, 1]
+/// (0 for a = b).
+[[nodiscard]] double segment_parameter(const Point3& p, const Point3& a, const Point3& b);
+/// Squared distance from p to triangle abc.
+[[nodiscard]] inline double sq_dist_to_triangle(const Point3& p, const Point3& a, const Point3& b,
+                                                const Point3& c) {
+    return sqnorm(p - closest_point_on_triangle(p, a, b, c).point);
+}
+
 }  // namespace dynmesh
