@@ -238,7 +238,7 @@ void run_quadtree(const QuadtreeArgs& a) {
     const AngleRangeDeg angles = angle_range_deg(mesh);
 
     nlohmann::json rep = {
-        {"command", "quadtree"},
+        {"command", "qmesh"},
         {"input", a.points},
         {"output", a.output},
         {"domain", {{"origin", {domain.origin.x, domain.origin.y}}, {"width", domain.width}}},
@@ -297,7 +297,7 @@ void run_quadtree(const QuadtreeArgs& a) {
 void register_quadtree(CLI::App& root, int& result) {
     auto args = std::make_shared<QuadtreeArgs>();
     CLI::App* sub = root.add_subcommand(
-        "quadtree",
+        "qmesh",
         "Balanced quadtree of a 2D point set, updated by an insert/erase script, and its quality "
         "triangle mesh (every point a vertex, angles in [18.43, 135] deg)");
     sub->add_option("points", args->points, "Input points (.node, or 'x y' per line)")->required();
@@ -316,8 +316,9 @@ void register_quadtree(CLI::App& root, int& result) {
     sub->add_flag("--check", args->check,
                   "Verify the tree invariants, the mesh (conforming, CCW, covers the box) and the "
                   "angle bounds");
+    sub->alias("quadtree");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("quadtree", [&] { run_quadtree(*args); }); });
+    sub->callback([args, &result] { result = guarded("qmesh", [&] { run_quadtree(*args); }); });
 }
 
 }  // namespace dynmesh::cli
