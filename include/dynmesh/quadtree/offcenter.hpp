@@ -1,0 +1,114 @@
+#pragma once
+/// \file Off-center Delaunay refinement in 2D after Har-Peled & Üngör ("A time-optimal Delaunay
+/// refinement algorithm in two dimensions", SoCG 2005) as used by Acar & Hudson (CMU-CS-07-121,
+/// Figure 3): the static DynHPU algorithm of shared/specs/dynamic-quadtree.md §5.3, driven by the
+/// points and domain of a DynQuadtree<2>.
+///
+/// Vocabulary (spec §5.1), for a pair pq of length ℓ and a side (ccw or cw of lo→hi):
+///   * **leaf**: the disc through p and q of radius ρℓ centred on that side. A point t on the
+///     same side lies in the closed leaf iff the angle ∠ptq ≥ θ_min = arcsin(1/(2ρ)); a point u on
+///     the other side iff ∠puq ≥ 180° − θ_min.
+///   * **loose pair**: the closed leaf holds no point other than p, q. A loose pair is a Delaunay
+///     edge, so pairs are enumerated from Delaunay edges, and looseness is two angle tests against
+///     the two opposite vertices t (this side) and u (other side).
+///   * **crescent / off-center**: with σ measured along perp(q − p) (unit = ℓ), the apex of the
+///     leaf is at height σ_a = ρ + √(ρ² − ¼) = ½·cot(θ_min/2); the circumcentre of pqt is at σ_t.
+///     The crescent is empty iff σ_a ≤ σ_t; the off-center is m + min(σ_a, σ_t)·perp(q − p)
+///     (Üngör's rule with the exact factor ½, not Triangle's 0.475).
+///   * **size class** of a pair: ⌊lg(ℓ / W)⌋, absolute (W = domain width), never rescaled.
+///
+/// Algorithm (deterministic, from scratch on each call):
+///   1. V = tree points ∪ the 4 corners of the domain box Ω. The output triangulates **the box Ω**
+///      (= the convex hull of input ∪ box corners, since inputs lie in Ω's middle third). Box
+///      sides are split into subsegments; "round 0" splits, at its midpoint, every subsegment
+///      whose closed diametral disc holds another vertex, until none does.
+///   2. Rounds: the class finger i only increases. A round of class i takes a snapshot of all
+///      pending loose (pair, side) candidates of class ≤ i, sorts it by the canonical key
+///      (class, ℓ², lexicographic lo, lexicographic hi, ccw before cw) and processes it; new
+///      candidates (they always contain the new vertex) go to the next round. When no candidate
+///      of class ≤ i remains, i jumps to the smallest pending class.
+///   3. A candidate is skipped if it is no longer loose on its side. Otherwise its off-center r
+///      is computed. If r lies in the closed diametral disc of a box subsegment (or outside the
+///      open box), the encroached subsegments are split at their midpoints instead and the
+///      candidate is retried in the next round; else r is inserted.
+///   4. Output: the Delaunay triangulation of the final vertex set (CGAL
+///      Delaunay_triangulation_2, Epick). No loose pair remains, hence every triangle has
+///      circumradius / shortest edge ≤ ρ, i.e. minimum angle ≥ arcsin(1/(2ρ)).
+///
+/// Resolutions of spec ambiguities (see also the .cpp):
+///   * FIFO per size class (paper) vs canonical key order (spec §5.3.4): the canonical key is
+///     used inside a round; rounds snapshot-then-process, as Lemma A.8 needs.
+///   * Closed leaf (spec §5.1 [D]): a point counts as inside the leaf when its angle is within a
+///     slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ radians of the boundary (S = largest |coordinate| of Ω,
+///     ε = DBL_EPSILON), so that an inserted apex, which carries rounding error, always clears
+///     its pair. The quality bound therefore holds up to that slack (≈1e-10° for ℓ ≥ 1e-4·W).
+///   * Degenerate (cocircular) configurations: instead of the symbolic perturbation of §5.3.6,
+///     the triangulation is built by inserting the vertices in a canonical sequence (inputs
+///     sorted by grid coordinates, then Steiner points in processing order), which CGAL turns
+///     into the same triangulation every time. The triangle set is thus a function of
+///     (domain, point set, ρ), but for cocircular vertex sets it is not necessarily the
+///     triangulation a different canonical sequence would give.
+///   * Role of the quadtree: it supplies Ω and the canonical, snapped point set; the pair-length
+///     classes of §5.3.2 replace Figure 3's cell queues Q_i (spec §5.3.7). The cell-based
+///     "active point" machinery is not used.
+///   * Dynamic maintenance (spec §5.4 fast mode) is **not** implemented: this is the oracle mode,
+///     a deterministic recomputation from scratch; history independence holds by construction.
+///   * ρ must exceed √2 (spec §5.5 also allows √2 itself; this function, as its issue asks, does
+///     not): the guarantee of termination and size is the appendix's ρ > √2.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+
+namespace dynmesh {
+
+struct OffCenterOptions {
+    double rho = 1.5;             // radius-edge bound ρ, finite and > √2
+    bool use_offcenters = true;   // false: circumcentres only (spec §6.4 ablation), same order
+    std::size_t max_steiner = 50'000'000;  // step cap: throw InternalError beyond this
+};
+
+/// The refined mesh of the box Ω = [origin, origin + width]^2.
+struct OffCenterMesh2 {
+    Vec2 origin{};
+    double width = 1.0;
+    /// Input points (DynQuadtree::points() order, bit-identical), then Steiner points (box
+    /// corners, boundary midpoints, off-centers) sorted lexicographically by (x, y).
+    std::vector<Vec2> points;
+    /// Counter-clockwise triangles, each rotated to start at its smallest index, sorted.
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    /// The vertex of each tree point, in DynQuadtree::points() order (= 0, 1, ..., n-1).
+    std::vector<std::uint32_t> input_vertices;
+    std::size_t steiner = 0;             // points.size() − input count (corners included)
+    std::size_t boundary_steiner = 0;    // corners and box-side midpoints
+    std::size_t apex_offcenters = 0;     // Steiner points at the leaf apex (crescent empty)
+    std::size_t circumcentres = 0;       // Steiner points at a circumcentre of pqt
+    std::size_t rounds = 0;              // rounds processed (round 0 excluded)
+    std::size_t stuck_pairs = 0;         // loose pairs whose off-center was already a vertex
+                                         // (rounding at extreme spread; expected 0)
+    double min_angle_deg = 180.0;        // smallest triangle angle of the output
+};
+
+/// Runs the static off-center refinement (see the file comment) on the tree's point set and
+/// domain. Deterministic: a function of (domain, point set, options) only.
+/// \throw InvalidInput if options.rho is not finite or ρ ≤ √2.
+/// \throw InternalError if more than options.max_steiner Steiner points would be needed.
+[[nodiscard]] OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree,
+                                            const OffCenterOptions& options = {});
+
+/// The minimum angle (degrees) that radius-edge bound ρ guarantees: arcsin(1/(2ρ)).
+[[nodiscard]] double offcenter_min_angle_deg(double rho);
+
+/// Every violated property, one message each; empty when valid: indices in range, every triangle
+/// counter-clockwise (exact orient2d), every edge shared by two oppositely oriented triangles or
+/// on the box boundary, total area = box area (relative 1e-12), no unused or duplicate vertex,
+/// every input point a vertex, and the empty-circle property (exact incircle: no vertex opposite
+/// an interior edge strictly inside the other triangle's circumcircle).
+[[nodiscard]] std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh);
+
+}  // namespace dynmesh

@@ -1,0 +1,193 @@
+#include "dynmesh/quadtree/offcenter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+
+namespace dynmesh {
+namespace {
+
+std::string joined(const std::vector<std::string>& v) {
+    std::string s;
+    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += v[i] + "\n";
+    return s;
+}
+
+/// Uniform points in the middle third of [o, o + w]^2.
+std::vector<Vec2> uniform_points(std::size_t n, std::uint64_t seed, Vec2 o = {}, double w = 1) {
+    Rng rng(seed);
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < n; ++i)
+        out.push_back({o.x + w * rng.uniform(1.0 / 3, 2.0 / 3), o.y + w * rng.uniform(1.0 / 3, 2.0 / 3)});
+    return out;
+}
+
+/// Clusters with spreads from 1e-2 down to 1e-5 of the unit domain.
+std::vector<Vec2> clustered_points(std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Vec2> out;
+    for (double spread : {1e-2, 1e-3, 1e-4, 1e-5}) {
+        const Vec2 c{rng.uniform(0.4, 0.6), rng.uniform(0.4, 0.6)};
+        for (int i = 0; i < 10; ++i)
+            out.push_back({c.x + spread * rng.uniform(), c.y + spread * rng.uniform()});
+    }
+    return out;
+}
+
+/// Largest circumradius / shortest edge over all triangles.
+double max_radius_edge(const OffCenterMesh2& mesh) {
+    double worst = 0;
+    for (const auto& t : mesh.triangles) {
+        const Vec2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+        const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
+        const double area2 = std::fabs(cross(b - a, c - a));
+        const double r = la * lb * lc / (2 * area2);
+        worst = std::max(worst, r / std::min({la, lb, lc}));
+    }
+    return worst;
+}
+
+/// Validity (CCW, conforming, covers the box, Delaunay), every input point a vertex, quality.
+void expect_good_mesh(const DynQuadtree<2>& tree, double rho, const std::string& what) {
+    const OffCenterMesh2 mesh = offcenter_mesh(tree, {.rho = rho});
+    const auto bad = check_offcenter_mesh(mesh);
+    EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
+    const auto pts = tree.points();
+    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
+        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
+    }
+    EXPECT_EQ(mesh.points.size(), pts.size() + mesh.steiner) << what;
+    EXPECT_EQ(mesh.steiner, mesh.boundary_steiner + mesh.apex_offcenters + mesh.circumcentres)
+        << what;
+    EXPECT_EQ(mesh.stuck_pairs, 0u) << what;
+    EXPECT_GE(mesh.min_angle_deg, offcenter_min_angle_deg(rho) - 1e-7) << what;
+    EXPECT_LE(max_radius_edge(mesh), rho * (1 + 1e-8)) << what;
+}
+
+TEST(OffCenterMesh, EmptyTreeIsTwoTriangles) {
+    const DynQuadtree<2> tree;
+    const OffCenterMesh2 mesh = offcenter_mesh(tree);
+    EXPECT_EQ(mesh.points.size(), 4u);
+    EXPECT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_EQ(mesh.steiner, 4u);
+    EXPECT_TRUE(check_offcenter_mesh(mesh).empty()) << joined(check_offcenter_mesh(mesh));
+}
+
+TEST(OffCenterMesh, SmallInputs) {
+    for (double rho : {1.5, 2.0}) {
+        expect_good_mesh(DynQuadtree<2>::build(std::vector<Vec2>{{0.5, 0.5}}), rho, "one point");
+        expect_good_mesh(DynQuadtree<2>::build(std::vector<Vec2>{{0.4, 0.41}, {0.6, 0.58}}), rho,
+                         "two points");
+        expect_good_mesh(DynQuadtree<2>::build(std::vector<Vec2>{{1.0 / 3, 1.0 / 3}, {0.6, 0.6}}),
+                         rho, "middle-third corner");
+        // Cocircular and collinear inputs (a lattice).
+        std::vector<Vec2> grid;
+        for (int i = 0; i < 5; ++i)
+            for (int j = 0; j < 5; ++j) grid.push_back({0.4 + 0.05 * i, 0.4 + 0.05 * j});
+        expect_good_mesh(DynQuadtree<2>::build(grid), rho, "lattice");
+    }
+}
+
+TEST(OffCenterMesh, UniformInputsAreValidDelaunayAndGood) {
+    for (double rho : {1.5, 2.0})
+        for (std::uint64_t seed : {1u, 2u, 3u})
+            expect_good_mesh(DynQuadtree<2>::build(uniform_points(300, seed)), rho,
+                             "uniform seed " + std::to_string(seed) + " rho " + std::to_string(rho));
+}
+
+TEST(OffCenterMesh, ClusteredInputsAreValidDelaunayAndGood) {
+    for (double rho : {1.5, 2.0})
+        for (std::uint64_t seed : {4u, 5u})
+            expect_good_mesh(DynQuadtree<2>::build(clustered_points(seed)), rho,
+                             "clustered seed " + std::to_string(seed) + " rho " + std::to_string(rho));
+}
+
+TEST(OffCenterMesh, OtherDomainBox) {
+    const Vec2 o{-3.0, 5.0};
+    const double w = 8.0;
+    const auto pts = uniform_points(200, 9, o, w);
+    const auto tree = DynQuadtree<2>::build(pts, {.origin = o, .width = w});
+    expect_good_mesh(tree, 1.5, "box (-3, 5) + 8");
+    const OffCenterMesh2 mesh = offcenter_mesh(tree, {.rho = 1.5});
+    EXPECT_EQ(mesh.origin, o);
+    EXPECT_EQ(mesh.width, w);
+}
+
+TEST(OffCenterMesh, NearSqrt2Terminates) {
+    const double rho = std::nextafter(std::sqrt(2.0), 2.0);
+    expect_good_mesh(DynQuadtree<2>::build(uniform_points(200, 11)), rho, "rho = sqrt(2)+");
+}
+
+TEST(OffCenterMesh, CircumcentreAblationIsValidToo) {
+    const auto tree = DynQuadtree<2>::build(uniform_points(200, 12));
+    const OffCenterMesh2 mesh = offcenter_mesh(tree, {.rho = 1.5, .use_offcenters = false});
+    EXPECT_TRUE(check_offcenter_mesh(mesh).empty()) << joined(check_offcenter_mesh(mesh));
+    EXPECT_EQ(mesh.apex_offcenters, 0u);
+    EXPECT_LE(max_radius_edge(mesh), 1.5 * (1 + 1e-8));
+}
+
+TEST(OffCenterMesh, HistoryIndependent) {
+    for (std::uint64_t seed : {21u, 22u}) {
+        Rng rng(seed);
+        const auto pool = uniform_points(150, seed);
+        DynQuadtree<2> tree;
+        std::vector<Vec2> present;
+        for (int step = 0; step < 400; ++step) {
+            if (present.empty() || rng.coin(0.6)) {
+                const Vec2& p = pool[rng.below(pool.size())];
+                if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
+            } else {
+                const std::size_t k = rng.below(present.size());
+                ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
+                present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
+            }
+        }
+        std::vector<Vec2> shuffled = present;
+        std::reverse(shuffled.begin(), shuffled.end());
+        const auto fresh = DynQuadtree<2>::build(shuffled);
+        for (double rho : {1.5, 2.0}) {
+            const OffCenterMesh2 a = offcenter_mesh(tree, {.rho = rho});
+            const OffCenterMesh2 b = offcenter_mesh(fresh, {.rho = rho});
+            EXPECT_EQ(a.points, b.points) << "seed " << seed;
+            EXPECT_EQ(a.triangles, b.triangles) << "seed " << seed;
+            EXPECT_EQ(a.input_vertices, b.input_vertices) << "seed " << seed;
+            EXPECT_EQ(a.steiner, b.steiner) << "seed " << seed;
+        }
+        // Erase then re-insert a point restores the identical mesh.
+        ASSERT_FALSE(present.empty());
+        const OffCenterMesh2 before = offcenter_mesh(tree, {.rho = 1.5});
+        ASSERT_EQ(tree.erase(present.front()), EraseResult::Erased);
+        ASSERT_EQ(tree.insert(present.front()), InsertResult::Inserted);
+        const OffCenterMesh2 after = offcenter_mesh(tree, {.rho = 1.5});
+        EXPECT_EQ(before.points, after.points);
+        EXPECT_EQ(before.triangles, after.triangles);
+    }
+}
+
+TEST(OffCenterMesh, RejectsBadRho) {
+    const auto tree = DynQuadtree<2>::build(uniform_points(10, 3));
+    const double bad[] = {std::sqrt(2.0), 1.0, 0.5, -2.0, 0.0,
+                          std::numeric_limits<double>::quiet_NaN(),
+                          std::numeric_limits<double>::infinity()};
+    for (double rho : bad)
+        EXPECT_THROW((void)offcenter_mesh(tree, {.rho = rho}), InvalidInput) << "rho " << rho;
+}
+
+TEST(OffCenterMesh, MinAngleOfRho) {
+    EXPECT_NEAR(offcenter_min_angle_deg(std::sqrt(2.0)), 20.7048, 1e-4);
+    EXPECT_NEAR(offcenter_min_angle_deg(1.0), 30.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace dynmesh
