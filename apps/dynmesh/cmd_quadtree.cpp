@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -19,6 +20,7 @@
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/point_set_io.hpp"
 #include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quad_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -31,6 +33,7 @@ struct QuadtreeArgs {
     std::string points, ops, output;
     std::string domain = "auto";
     int dim = 2;
+    double rho = 0;  ///< 0: the quadtree postprocess; else the off-center mesh with this bound
     bool check = false;
 };
 
@@ -233,7 +236,20 @@ void run_quadtree(const QuadtreeArgs& a) {
 
     progress.stage("meshing");
     t0 = std::chrono::steady_clock::now();
-    const QuadMesh2 mesh = quad_mesh(tree);
+    QuadMesh2 mesh;
+    std::optional<OffCenterMesh2> oc;
+    if (a.rho > 0) {
+        OffCenterOptions oo;
+        oo.rho = a.rho;
+        oc = offcenter_mesh(tree, oo);
+        mesh.origin = oc->origin;
+        mesh.width = oc->width;
+        mesh.points = oc->points;
+        mesh.triangles = oc->triangles;
+        mesh.input_vertices = oc->input_vertices;
+    } else {
+        mesh = quad_mesh(tree);
+    }
     const double seconds_mesh = seconds_since(t0);
     const AngleRangeDeg angles = angle_range_deg(mesh);
 
@@ -254,13 +270,26 @@ void run_quadtree(const QuadtreeArgs& a) {
         {"seconds_mesh", seconds_mesh},
         {"ops", op_times}};
     if (!a.ops.empty()) rep["ops_file"] = a.ops;
+    rep["mesher"] = oc ? "offcenter" : "quadtree";
+    if (oc) {
+        rep["rho"] = a.rho;
+        rep["steiner"] = oc->steiner;
+        rep["min_angle_bound_deg"] = offcenter_min_angle_deg(a.rho);
+    }
     if (a.check) {
         progress.stage("checking");
         std::vector<std::string> bad = tree.check_invariants();
-        for (std::string& s : check_quad_mesh(mesh)) bad.push_back(std::move(s));
-        if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
-            bad.push_back("angles outside [" + std::to_string(kQuadMeshMinAngleDeg) + ", " +
-                          std::to_string(kQuadMeshMaxAngleDeg) + "] degrees");
+        if (oc) {
+            for (std::string& s : check_offcenter_mesh(*oc)) bad.push_back(std::move(s));
+            if (angles.min < offcenter_min_angle_deg(a.rho) - 1e-7)
+                bad.push_back("smallest angle " + std::to_string(angles.min) + " below the bound " +
+                              std::to_string(offcenter_min_angle_deg(a.rho)) + " degrees");
+        } else {
+            for (std::string& s : check_quad_mesh(mesh)) bad.push_back(std::move(s));
+            if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
+                bad.push_back("angles outside [" + std::to_string(kQuadMeshMinAngleDeg) + ", " +
+                              std::to_string(kQuadMeshMaxAngleDeg) + "] degrees");
+        }
         if (!bad.empty())
             throw InternalError("--check failed (" + std::to_string(bad.size()) +
                                 " problems): " + bad.front());
@@ -308,6 +337,10 @@ void register_quadtree(CLI::App& root, int& result) {
                     "Update script applied in order after the build: '+ x y' inserts, '- x y' "
                     "erases (# comments)");
     sub->add_option("--dim", args->dim, "Dimension (only 2)")->capture_default_str();
+    sub->add_option("--rho", args->rho,
+                    "Off-center (Har-Peled-Ungor) Delaunay mesh with radius-edge ratio <= RHO (> sqrt(2); "
+                    "sqrt(2) ~ 20.7 deg) instead of the quadtree postprocess")
+        ->check(finite_number());
     sub->add_option("--domain", args->domain,
                     "Domain box 'X0,Y0,W' (every point must lie in its middle third), or 'auto': "
                     "centred on the bounding box of the points and all inserted points, 4x its "
