@@ -1,12 +1,19 @@
-/// `dynmesh quadtree`: a balanced quadtree over a point set, updated by an insert/erase script,
-/// and the quality triangle mesh derived from it (shared/specs/dynamic-quadtree.md §1–§4).
+/// `dynmesh qmesh` (alias `quadtree`): a balanced quadtree (2D) or octree (3D) over a point set,
+/// updated by an insert/erase script, and the quality simplicial mesh derived from it
+/// (shared/specs/dynamic-quadtree.md §1–§4): triangles by quad_mesh() or, with --rho, by the
+/// off-center mesher in 2D; tetrahedra by oct_mesh() in 3D.
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -19,7 +26,9 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/point_set_io.hpp"
+#include "dynmesh/io/simplex_mesh_io.hpp"
 #include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/quadtree/oct_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quad_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
@@ -33,19 +42,36 @@ struct QuadtreeArgs {
     std::string points, ops, output;
     std::string domain = "auto";
     int dim = 2;
-    double rho = 0;  ///< 0: the quadtree postprocess; else the off-center mesh with this bound
+    double rho = 0;  ///< with rho_given: the off-center mesh with this bound (2D only)
+    const CLI::Option* rho_option = nullptr;
     bool check = false;
 };
 
+/// Output formats: the simplex-mesh formats (both dimensions) and, in 2D, the soup formats.
+const std::vector<std::string> kSimplexExtensions = {".node", ".ele", ".off", ".vtu", ".mesh"};
+const std::vector<std::string> kSoupExtensions2D = {".obj", ".ply", ".vtk", ".vtp"};
+
+template <int D>
 struct Op {
     bool insert = true;
-    Vec2 p;
+    PointD<D> p{};
     std::size_t line = 0;
 };
 
-std::string fmt_point(const Vec2& p) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%.17g, %.17g)", p.x, p.y);
+template <int D>
+std::string fmt_point(const PointD<D>& p) {
+    std::string s = "(";
+    for (std::size_t i = 0; i < static_cast<std::size_t>(D); ++i) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", p[i]);
+        s += (i ? ", " : "") + std::string(buf);
+    }
+    return s + ")";
+}
+
+std::string fmt_double(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
     return buf;
 }
 
@@ -54,6 +80,19 @@ std::string strip_comment(const std::string& line) { return line.substr(0, line.
 bool is_blank(const std::string& s) {
     return std::all_of(s.begin(), s.end(),
                        [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+}
+
+/// Parses a whole token as a double; nullopt if it is not one.
+std::optional<double> parse_number(const std::string& t) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(t, &used);
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    if (used != t.size()) return std::nullopt;
+    return v;
 }
 
 /// 1-based line numbers of the point lines of a point file (as read_point_set reads it:
@@ -74,75 +113,157 @@ std::vector<std::size_t> point_lines(const std::string& path) {
     return out;
 }
 
-/// Parses `+ x y` / `- x y` lines (`#` comments and blank lines ignored).
-std::vector<Op> read_ops(const std::string& path) {
+/// Parses `+ x y [z]` / `- x y [z]` lines with D coordinates (`#` comments and blank lines
+/// ignored).
+template <int D>
+std::vector<Op<D>> read_ops(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError(path + ": cannot open the ops file");
-    std::vector<Op> ops;
+    const std::string form = D == 2 ? "'+ x y' or '- x y'" : "'+ x y z' or '- x y z'";
+    std::vector<Op<D>> ops;
     std::string line;
     for (std::size_t ln = 1; std::getline(in, line); ++ln) {
         const std::string body = strip_comment(line);
         if (is_blank(body)) continue;
         std::istringstream ss(body);
-        std::string sign, xs, ys, extra;
-        ss >> sign >> xs >> ys;
+        std::vector<std::string> tok;
+        for (std::string t; ss >> t;) tok.push_back(t);
         const std::string where = path + ":" + std::to_string(ln) + ": ";
-        if ((sign != "+" && sign != "-") || ys.empty() || (ss >> extra))
-            throw IoError(where + "expected '+ x y' or '- x y', got '" + body + "'");
-        Op op{.insert = sign == "+", .p = {}, .line = ln};
-        for (int k = 0; k < 2; ++k) {
-            const std::string& t = k == 0 ? xs : ys;
-            std::size_t used = 0;
-            double v = 0;
-            try {
-                v = std::stod(t, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used != t.size()) throw IoError(where + "not a number: '" + t + "'");
-            if (!std::isfinite(v)) throw IoError(where + "non-finite coordinate '" + t + "'");
-            (k == 0 ? op.p.x : op.p.y) = v;
+        if (tok.empty() || (tok[0] != "+" && tok[0] != "-") ||
+            tok.size() != static_cast<std::size_t>(D) + 1)
+            throw IoError(where + "expected " + form + " (--dim " + std::to_string(D) +
+                          "), got '" + body + "'");
+        Op<D> op{.insert = tok[0] == "+", .p = {}, .line = ln};
+        for (std::size_t k = 0; k < static_cast<std::size_t>(D); ++k) {
+            const std::string& t = tok[k + 1];
+            const std::optional<double> v = parse_number(t);
+            if (!v) throw IoError(where + "not a number: '" + t + "'");
+            if (!std::isfinite(*v)) throw IoError(where + "non-finite coordinate '" + t + "'");
+            op.p[k] = *v;
         }
         ops.push_back(op);
     }
     return ops;
 }
 
-/// The domain box: explicit "X0,Y0,W", or "auto": centred on the bounding box of the initial
-/// points and every inserted point, of width 4 × its larger extent (1 if the extent is 0), so
-/// that the box's middle third holds every point with a margin.
-QuadtreeOptions<2> choose_domain(const std::string& spec, const std::vector<Vec2>& pts,
-                                 const std::vector<Op>& ops) {
-    QuadtreeOptions<2> o;
+/// The grid unit W·2^-52 must be a normal double, and the box must be finite.
+template <int D>
+void check_domain_resolution(const QuadtreeOptions<D>& o, const std::string& what) {
+    if (!std::isfinite(o.width))
+        throw InvalidInput(what + ": the domain width overflows (the point spread is too large)");
+    if (std::ldexp(o.width, -DynQuadtree<D>::kLevels) < DBL_MIN)
+        throw InvalidInput(what + ": cell sizes underflow: the domain width " +
+                           fmt_double(o.width) +
+                           " is too small for the quadtree grid (needs >= 2^52 * DBL_MIN)");
+    for (std::size_t i = 0; i < static_cast<std::size_t>(D); ++i)
+        if (!std::isfinite(o.origin[i] + o.width))
+            throw InvalidInput(what + ": the domain box overflows (coordinates too large)");
+}
+
+/// The domain box: explicit "X0,Y0,W" (2D) / "X0,Y0,Z0,W" (3D), or "auto": centred on the
+/// bounding box of the initial points and every inserted point, of width 4 × its larger extent
+/// (1 if the extent is 0), so that the box's middle third holds every point with a margin.
+template <int D>
+QuadtreeOptions<D> choose_domain(const std::string& spec, const std::vector<PointD<D>>& pts,
+                                 const std::vector<Op<D>>& ops, const std::string& points_file) {
+    constexpr auto kD = static_cast<std::size_t>(D);
+    QuadtreeOptions<D> o;
     if (spec != "auto") {
-        std::array<double, 3> v{};
-        std::istringstream ss(spec);
-        char c1 = 0, c2 = 0;
-        std::string rest;
-        if (!(ss >> v[0] >> c1 >> v[1] >> c2 >> v[2]) || c1 != ',' || c2 != ',' || (ss >> rest) ||
-            !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]) || !(v[2] > 0))
-            throw InvalidInput("--domain: expected 'auto' or 'X0,Y0,W' with W > 0, got '" + spec +
-                               "'");
-        o.origin = {v[0], v[1]};
-        o.width = v[2];
+        const std::string form = D == 2 ? "X0,Y0,W" : "X0,Y0,Z0,W";
+        const auto bad = [&] {
+            return InvalidInput("--domain: expected 'auto' or '" + form +
+                                "' with finite numbers and W > 0 (--dim " + std::to_string(D) +
+                                "), got '" + spec + "'");
+        };
+        std::vector<double> v;
+        std::size_t at = 0;
+        while (true) {
+            const std::size_t comma = spec.find(',', at);
+            std::string t = spec.substr(at, comma == std::string::npos ? comma : comma - at);
+            t.erase(0, t.find_first_not_of(" \t"));
+            t.erase(t.find_last_not_of(" \t") + 1);
+            const std::optional<double> x = parse_number(t);
+            if (!x || !std::isfinite(*x)) throw bad();
+            v.push_back(*x);
+            if (comma == std::string::npos) break;
+            at = comma + 1;
+        }
+        if (v.size() != kD + 1 || !(v[kD] > 0)) throw bad();
+        for (std::size_t i = 0; i < kD; ++i) o.origin[i] = v[i];
+        o.width = v[kD];
+        check_domain_resolution<D>(o, "--domain " + spec);
         return o;
     }
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    const auto grow = [&](const Vec2& p) {
-        for (std::size_t i = 0; i < 2; ++i) {
+    std::array<double, kD> lo{}, hi{};
+    lo.fill(INFINITY);
+    hi.fill(-INFINITY);
+    const auto grow = [&](const PointD<D>& p) {
+        for (std::size_t i = 0; i < kD; ++i) {
             lo[i] = std::min(lo[i], p[i]);
             hi[i] = std::max(hi[i], p[i]);
         }
     };
-    for (const Vec2& p : pts) grow(p);
-    for (const Op& op : ops)
+    for (const PointD<D>& p : pts) grow(p);
+    for (const Op<D>& op : ops)
         if (op.insert) grow(op.p);
     if (!(lo[0] <= hi[0])) return o;  // no points at all: the unit box
-    double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+    double extent = 0;
+    for (std::size_t i = 0; i < kD; ++i) extent = std::max(extent, hi[i] - lo[i]);
     if (!(extent > 0)) extent = 1.0;
     o.width = 4 * extent;
-    o.origin = {0.5 * (lo[0] + hi[0]) - 0.5 * o.width, 0.5 * (lo[1] + hi[1]) - 0.5 * o.width};
+    for (std::size_t i = 0; i < kD; ++i) o.origin[i] = 0.5 * lo[i] + 0.5 * hi[i] - 0.5 * o.width;
+    check_domain_resolution<D>(o, points_file + ": the automatic domain");
     return o;
+}
+
+/// Unit in the last place of |x|.
+double ulp_of(double x) {
+    const double m = std::fabs(x);
+    return std::nextafter(m, INFINITY) - m;
+}
+
+/// Checks that leaves of level `leaf_level` inside the cell (level, index) — and the finer
+/// cells and vertices the mesher derives from them — are resolved by the coordinates there:
+/// a sixteenth of the leaf size must span at least 1024 ulps of the largest coordinate of the
+/// cell. Returns the error text, or an empty string.
+template <int D>
+std::string cell_underflow(const QuadtreeOptions<D>& o, int level,
+                           const std::array<std::uint64_t, D>& index, int leaf_level) {
+    const double cell = std::ldexp(o.width, level - DynQuadtree<D>::kLevels);
+    const double leaf = std::ldexp(o.width, leaf_level - DynQuadtree<D>::kLevels);
+    double big = 0;
+    PointD<D> corner{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(D); ++i) {
+        const double x0 = o.origin[i] + static_cast<double>(index[i]) * cell;
+        corner[i] = x0;
+        big = std::max({big, std::fabs(x0), std::fabs(x0 + cell)});
+    }
+    if (std::ldexp(leaf, -4) >= 1024 * ulp_of(big)) return {};
+    return "cell sizes underflow: the point spread is too large for double precision (a cell "
+           "of size " +
+           fmt_double(leaf) + " at " + fmt_point<D>(corner) +
+           " is below the coordinate resolution there)";
+}
+
+/// The first unresolved leaf of the tree (see cell_underflow), or an empty string.
+template <int D>
+std::string tree_underflow(const DynQuadtree<D>& tree) {
+    for (const CellId<D>& c : tree.leaves()) {
+        std::string e = cell_underflow<D>(tree.options(), c.level, c.index, c.level);
+        if (!e.empty()) return e;
+    }
+    return {};
+}
+
+/// The new leaves of the last insert (children of the split cells), checked as above.
+template <int D>
+std::string update_underflow(const DynQuadtree<D>& tree) {
+    for (const CellId<D>& c : tree.last_update().split) {
+        if (c.level == 0) continue;
+        std::string e = cell_underflow<D>(tree.options(), c.level, c.index, c.level - 1);
+        if (!e.empty()) return e;
+    }
+    return {};
 }
 
 std::string lower_ext(const std::string& path) {
@@ -151,94 +272,32 @@ std::string lower_ext(const std::string& path) {
     return e;
 }
 
-void run_quadtree(const QuadtreeArgs& a) {
-    DYNMESH_CHECK(a.dim == 2, "--dim: only 2 is supported by the quadtree mesher");
-    const std::string ext = lower_ext(a.output);
-    const bool node_out = ext == ".node";
-    const auto writable = writable_mesh_extensions();
-    if (!node_out && std::find(writable.begin(), writable.end(), ext) == writable.end())
-        throw InvalidInput("-o " + a.output +
-                           ": unsupported extension (use .node, .off, .obj, .ply, "
-                           ".vtk or .vtp)");
-    std::filesystem::path base = a.output;
-    if (node_out) base.replace_extension();
-    std::vector<std::string> outputs = {a.output};
-    if (node_out) outputs.push_back(base.string() + ".ele");
-    for (const std::string& out : outputs) {
-        ensure_not_same_file(a.points, out);
-        if (!a.ops.empty()) ensure_not_same_file(a.ops, out);
-    }
-    std::vector<std::string> files = outputs;
-    files.push_back(a.points);
-    files.push_back(a.ops);
-    check_report_path(a.common, files);
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
 
-    Progress progress("quadtree", a.common.quiet);
-    progress.stage("reading " + a.points);
-    const PointSet input = read_point_set(a.points);
-    if (input.dimension != 2)
-        throw InvalidInput(a.points + ": a " + std::to_string(input.dimension) +
-                           "D point set (the quadtree mesher is 2D)");
-    std::vector<Vec2> pts;
-    pts.reserve(input.points.size());
-    for (const Point3& p : input.points) pts.push_back({p.x, p.y});
-    const std::vector<Op> ops = a.ops.empty() ? std::vector<Op>{} : read_ops(a.ops);
-    const QuadtreeOptions<2> domain = choose_domain(a.domain, pts, ops);
+std::string join(const std::vector<std::string>& v, const std::string& last = " or ") {
+    std::string s;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        s += (i == 0 ? "" : (i + 1 == v.size() ? last : ", ")) + v[i];
+    return s;
+}
 
-    // Validate the initial points with their line numbers before building anything.
-    {
-        const DynQuadtree<2> probe(domain);
-        const std::vector<std::size_t> lines = point_lines(a.points);
-        const auto where = [&](std::size_t i) {
-            return a.points + ":" + (i < lines.size() ? std::to_string(lines[i]) : "?") +
-                   ": point " + fmt_point(pts[i]);
-        };
-        std::set<DynQuadtree<2>::GridPoint> seen;
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-            if (!probe.is_admissible(pts[i]))
-                throw InvalidInput(where(i) + " is outside the middle third of the domain");
-            if (!seen.insert(probe.grid_point(pts[i])).second)
-                throw InvalidInput(where(i) + " duplicates an earlier point");
-        }
-    }
+/// The mesh of either dimension, reduced to what the report, the checks and the writers need.
+struct MeshResult {
+    std::vector<Point3> points;
+    std::vector<std::array<std::uint32_t, 4>> simplices;  // 2D: the 4th entry is unused (0)
+    std::size_t mesh_leaves = 0;
+    double min_angle = 0, max_angle = 0;  // 2D: triangle angles; 3D: dihedral angles
+    std::vector<std::string> problems;    // filled only with --check
+    nlohmann::json extra = nlohmann::json::object();
+};
 
-    progress.stage("building the quadtree");
-    auto t0 = std::chrono::steady_clock::now();
-    DynQuadtree<2> tree = DynQuadtree<2>::build(pts, domain);
-    const double seconds_build = seconds_since(t0);
-
-    progress.stage("applying " + std::to_string(ops.size()) + " updates");
-    nlohmann::json op_times = nlohmann::json::array();
-    double seconds_ops = 0;
-    for (const Op& op : ops) {
-        const std::string where = a.ops + ":" + std::to_string(op.line) + ": ";
-        t0 = std::chrono::steady_clock::now();
-        if (op.insert) {
-            switch (tree.insert(op.p)) {
-                case InsertResult::Inserted:
-                    break;
-                case InsertResult::Duplicate:
-                    throw InvalidInput(where + "inserting " + fmt_point(op.p) +
-                                       ": a point with these coordinates is already present");
-                case InsertResult::OutsideDomain:
-                    throw InvalidInput(where + "inserting " + fmt_point(op.p) +
-                                       ": outside the middle third of the domain");
-                case InsertResult::NotFinite:
-                    throw InvalidInput(where + "inserting a non-finite point");
-            }
-        } else if (tree.erase(op.p) != EraseResult::Erased) {
-            throw InvalidInput(where + "erasing " + fmt_point(op.p) + ": no such point");
-        }
-        const double secs = seconds_since(t0);
-        seconds_ops += secs;
-        op_times.push_back({{"op", op.insert ? "+" : "-"}, {"seconds", secs}});
-    }
-
-    progress.stage("meshing");
-    t0 = std::chrono::steady_clock::now();
+MeshResult mesh_tree(const DynQuadtree<2>& tree, const QuadtreeArgs& a, bool offcenter) {
+    MeshResult r;
     QuadMesh2 mesh;
     std::optional<OffCenterMesh2> oc;
-    if (a.rho > 0) {
+    if (offcenter) {
         OffCenterOptions oo;
         oo.rho = a.rho;
         oc = offcenter_mesh(tree, oo);
@@ -250,46 +309,173 @@ void run_quadtree(const QuadtreeArgs& a) {
     } else {
         mesh = quad_mesh(tree);
     }
-    const double seconds_mesh = seconds_since(t0);
     const AngleRangeDeg angles = angle_range_deg(mesh);
-
-    nlohmann::json rep = {
-        {"command", "qmesh"},
-        {"input", a.points},
-        {"output", a.output},
-        {"domain", {{"origin", {domain.origin.x, domain.origin.y}}, {"width", domain.width}}},
-        {"points", tree.size()},
-        {"leaves", tree.leaf_count()},
-        {"mesh_leaves", mesh.leaves},
-        {"vertices", mesh.points.size()},
-        {"elements", mesh.triangles.size()},
-        {"min_angle_deg", angles.min},
-        {"max_angle_deg", angles.max},
-        {"seconds_build", seconds_build},
-        {"seconds_ops", seconds_ops},
-        {"seconds_mesh", seconds_mesh},
-        {"ops", op_times}};
-    if (!a.ops.empty()) rep["ops_file"] = a.ops;
-    rep["mesher"] = oc ? "offcenter" : "quadtree";
+    r.min_angle = angles.min;
+    r.max_angle = angles.max;
+    r.mesh_leaves = mesh.leaves;
+    r.points.reserve(mesh.points.size());
+    for (const Vec2& p : mesh.points) r.points.push_back({p.x, p.y, 0.0});
+    r.simplices.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) r.simplices.push_back({t[0], t[1], t[2], 0});
+    r.extra["min_angle_deg"] = angles.min;
+    r.extra["max_angle_deg"] = angles.max;
+    r.extra["mesher"] = oc ? "offcenter" : "quadtree";
     if (oc) {
-        rep["rho"] = a.rho;
-        rep["steiner"] = oc->steiner;
-        rep["min_angle_bound_deg"] = offcenter_min_angle_deg(a.rho);
+        r.extra["rho"] = a.rho;
+        r.extra["steiner"] = oc->steiner;
+        r.extra["min_angle_bound_deg"] = offcenter_min_angle_deg(a.rho);
     }
+    if (a.check) {
+        if (oc) {
+            r.problems = check_offcenter_mesh(*oc);
+            if (angles.min < offcenter_min_angle_deg(a.rho) - 1e-7)
+                r.problems.push_back("smallest angle " + std::to_string(angles.min) +
+                                     " below the bound " +
+                                     std::to_string(offcenter_min_angle_deg(a.rho)) + " degrees");
+        } else {
+            r.problems = check_quad_mesh(mesh);
+            if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
+                r.problems.push_back("angles outside [" + std::to_string(kQuadMeshMinAngleDeg) +
+                                     ", " + std::to_string(kQuadMeshMaxAngleDeg) + "] degrees");
+        }
+    }
+    return r;
+}
+
+MeshResult mesh_tree(const DynQuadtree<3>& tree, const QuadtreeArgs& a, bool /*offcenter*/) {
+    MeshResult r;
+    OctMesh3 mesh = oct_mesh(tree);
+    const DihedralRangeDeg d = dihedral_range_deg(mesh);
+    r.min_angle = d.min;
+    r.max_angle = d.max;
+    r.mesh_leaves = mesh.leaves;
+    r.extra["min_dihedral_deg"] = d.min;
+    r.extra["max_dihedral_deg"] = d.max;
+    r.extra["mesher"] = "octree";
+    if (a.check) {
+        r.problems = check_oct_mesh(mesh);
+        if (d.min < kOctMeshMinDihedralDeg || d.max > kOctMeshMaxDihedralDeg)
+            r.problems.push_back("dihedral angles [" + std::to_string(d.min) + ", " +
+                                 std::to_string(d.max) + "] outside [" +
+                                 std::to_string(kOctMeshMinDihedralDeg) + ", " +
+                                 std::to_string(kOctMeshMaxDihedralDeg) + "] degrees");
+    }
+    r.points = std::move(mesh.points);
+    r.simplices = std::move(mesh.tets);
+    return r;
+}
+
+template <int D>
+void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
+    constexpr auto kD = static_cast<std::size_t>(D);
+    const std::string ext = lower_ext(a.output);
+    const bool simplex_out = contains(kSimplexExtensions, ext);
+    const char* tree_name = D == 2 ? "quadtree" : "octree";
+
+    Progress progress("qmesh", a.common.quiet);
+    std::vector<PointD<D>> pts;
+    pts.reserve(input.points.size());
+    for (const Point3& p : input.points) {
+        PointD<D> q{};
+        for (std::size_t i = 0; i < kD; ++i) q[i] = p[i];
+        pts.push_back(q);
+    }
+    const std::vector<Op<D>> ops = a.ops.empty() ? std::vector<Op<D>>{} : read_ops<D>(a.ops);
+    const QuadtreeOptions<D> domain = choose_domain<D>(a.domain, pts, ops, a.points);
+    const bool auto_domain = a.domain == "auto";
+    const std::string outside =
+        auto_domain ? " is outside the middle third of the automatic domain (its coordinates are "
+                      "too large for the point spread: cell sizes underflow)"
+                    : " is outside the middle third of the domain";
+    const std::string quantum =
+        " (after snapping to the grid quantum " +
+        fmt_double(std::ldexp(domain.width, DynQuadtree<D>::kGuardBits - DynQuadtree<D>::kLevels)) +
+        ")";
+
+    // Validate the initial points with their line numbers before building anything.
+    {
+        const DynQuadtree<D> probe(domain);
+        const std::vector<std::size_t> lines = point_lines(a.points);
+        const auto where = [&](std::size_t i) {
+            return a.points + ":" + (i < lines.size() ? std::to_string(lines[i]) : "?") +
+                   ": point " + fmt_point<D>(pts[i]);
+        };
+        std::set<typename DynQuadtree<D>::GridPoint> seen;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            if (!is_finite(pts[i])) throw InvalidInput(where(i) + " is not finite");
+            if (!probe.is_admissible(pts[i])) throw InvalidInput(where(i) + outside);
+            if (!seen.insert(probe.grid_point(pts[i])).second)
+                throw InvalidInput(where(i) + " duplicates an earlier point" + quantum);
+        }
+    }
+
+    progress.stage(std::string("building the ") + tree_name);
+    auto t0 = std::chrono::steady_clock::now();
+    DynQuadtree<D> tree = DynQuadtree<D>::build(pts, domain);
+    const double seconds_build = seconds_since(t0);
+    if (std::string e = tree_underflow(tree); !e.empty()) throw InvalidInput(a.points + ": " + e);
+
+    progress.stage("applying " + std::to_string(ops.size()) + " updates");
+    nlohmann::json op_times = nlohmann::json::array();
+    double seconds_ops = 0;
+    for (const Op<D>& op : ops) {
+        const std::string where = a.ops + ":" + std::to_string(op.line) + ": ";
+        t0 = std::chrono::steady_clock::now();
+        if (op.insert) {
+            switch (tree.insert(op.p)) {
+                case InsertResult::Inserted:
+                    break;
+                case InsertResult::Duplicate:
+                    throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) +
+                                       ": a point with these coordinates is already present" +
+                                       quantum);
+                case InsertResult::OutsideDomain:
+                    throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) + ":" +
+                                       outside.substr(3));
+                case InsertResult::NotFinite:
+                    throw InvalidInput(where + "inserting a non-finite point");
+            }
+        } else if (tree.erase(op.p) != EraseResult::Erased) {
+            throw InvalidInput(where + "erasing " + fmt_point<D>(op.p) + ": no such point");
+        }
+        const double secs = seconds_since(t0);
+        if (op.insert) {
+            if (std::string e = update_underflow(tree); !e.empty()) {
+                (void)tree.erase(op.p);  // leave the state as it was before the op
+                throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) + ": " + e);
+            }
+        }
+        seconds_ops += secs;
+        op_times.push_back({{"op", op.insert ? "+" : "-"}, {"seconds", secs}});
+    }
+
+    progress.stage("meshing");
+    t0 = std::chrono::steady_clock::now();
+    MeshResult mesh = mesh_tree(tree, a, offcenter);
+    const double seconds_mesh = seconds_since(t0);
+
+    nlohmann::json origin = nlohmann::json::array();
+    for (std::size_t i = 0; i < kD; ++i) origin.push_back(domain.origin[i]);
+    nlohmann::json rep = {{"command", "qmesh"},
+                          {"dim", D},
+                          {"input", a.points},
+                          {"output", a.output},
+                          {"domain", {{"origin", origin}, {"width", domain.width}}},
+                          {"points", tree.size()},
+                          {"leaves", tree.leaf_count()},
+                          {"mesh_leaves", mesh.mesh_leaves},
+                          {"vertices", mesh.points.size()},
+                          {"elements", mesh.simplices.size()},
+                          {"seconds_build", seconds_build},
+                          {"seconds_ops", seconds_ops},
+                          {"seconds_mesh", seconds_mesh},
+                          {"ops", op_times}};
+    rep.update(mesh.extra);
+    if (!a.ops.empty()) rep["ops_file"] = a.ops;
     if (a.check) {
         progress.stage("checking");
         std::vector<std::string> bad = tree.check_invariants();
-        if (oc) {
-            for (std::string& s : check_offcenter_mesh(*oc)) bad.push_back(std::move(s));
-            if (angles.min < offcenter_min_angle_deg(a.rho) - 1e-7)
-                bad.push_back("smallest angle " + std::to_string(angles.min) + " below the bound " +
-                              std::to_string(offcenter_min_angle_deg(a.rho)) + " degrees");
-        } else {
-            for (std::string& s : check_quad_mesh(mesh)) bad.push_back(std::move(s));
-            if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
-                bad.push_back("angles outside [" + std::to_string(kQuadMeshMinAngleDeg) + ", " +
-                              std::to_string(kQuadMeshMaxAngleDeg) + "] degrees");
-        }
+        for (std::string& s : mesh.problems) bad.push_back(std::move(s));
         if (!bad.empty())
             throw InternalError("--check failed (" + std::to_string(bad.size()) +
                                 " problems): " + bad.front());
@@ -297,28 +483,65 @@ void run_quadtree(const QuadtreeArgs& a) {
     }
 
     progress.stage("writing " + a.output);
-    if (node_out) {
-        PointSet ps;
-        ps.dimension = 2;
-        ps.points.reserve(mesh.points.size());
-        for (const Vec2& p : mesh.points) ps.points.push_back({p.x, p.y, 0.0});
-        std::vector<std::array<std::uint32_t, 4>> ele;
-        ele.reserve(mesh.triangles.size());
-        for (const auto& t : mesh.triangles) ele.push_back({t[0], t[1], t[2], 0});
-        write_node_ele(base, ps, ele);
+    std::vector<std::string> written;
+    if (simplex_out) {
+        const SimplexMeshView view{.dimension = D, .points = mesh.points, .simplices = mesh.simplices};
+        for (const auto& f : write_simplex_mesh(a.output, view)) written.push_back(f.string());
     } else {
         TriangleSoup soup;
-        soup.points.reserve(mesh.points.size());
-        for (const Vec2& p : mesh.points) soup.points.push_back({p.x, p.y, 0.0});
-        soup.triangles = mesh.triangles;
+        soup.points = mesh.points;
+        soup.triangles.reserve(mesh.simplices.size());
+        for (const auto& s : mesh.simplices) soup.triangles.push_back({s[0], s[1], s[2]});
         write_soup(soup, a.output);
+        written.push_back(a.output);
     }
     write_report(a.common, rep);
-    std::cout << "quadtree: " << tree.size() << " points, " << tree.leaf_count() << " leaves, "
-              << ops.size() << " updates; mesh " << mesh.points.size() << " vertices, "
-              << mesh.triangles.size() << " triangles, angles " << angles.min << " .. "
-              << angles.max << " deg\n  wrote " << a.output
-              << (node_out ? " and " + base.string() + ".ele" : std::string()) << "\n";
+    std::cout << tree_name << ": " << tree.size() << " points, " << tree.leaf_count()
+              << " leaves, " << ops.size() << " updates; mesh " << mesh.points.size()
+              << " vertices, " << mesh.simplices.size()
+              << (D == 2 ? " triangles, angles " : " tetrahedra, dihedral angles ")
+              << mesh.min_angle << " .. " << mesh.max_angle << " deg\n  wrote " << join(written, " and ")
+              << "\n";
+}
+
+void run_quadtree(const QuadtreeArgs& a) {
+    DYNMESH_CHECK(a.dim == 2 || a.dim == 3,
+                  "--dim: must be 2 or 3, not " + std::to_string(a.dim));
+    const bool offcenter = a.rho_option != nullptr && a.rho_option->count() > 0;
+    if (offcenter) {
+        DYNMESH_CHECK(a.dim == 2, "--rho: the off-center mesher is 2D only (got --dim 3)");
+        DYNMESH_CHECK(a.rho > std::sqrt(2.0), "--rho " + fmt_double(a.rho) +
+                                                  ": rho must be > sqrt(2) ~ 1.41421356");
+    }
+    const std::string ext = lower_ext(a.output);
+    std::vector<std::string> allowed = kSimplexExtensions;
+    if (a.dim == 2) allowed.insert(allowed.end(), kSoupExtensions2D.begin(), kSoupExtensions2D.end());
+    if (!contains(allowed, ext))
+        throw InvalidInput("-o " + a.output + ": unsupported extension for --dim " +
+                           std::to_string(a.dim) + " (use " + join(allowed) + ")");
+    std::vector<std::string> outputs = {a.output};
+    if (ext == ".node" || ext == ".ele") {
+        std::filesystem::path base = a.output;
+        base.replace_extension();
+        outputs = {base.string() + ".node", base.string() + ".ele"};
+    }
+    for (const std::string& out : outputs) {
+        ensure_not_same_file(a.points, out);
+        if (!a.ops.empty()) ensure_not_same_file(a.ops, out);
+    }
+    std::vector<std::string> files = outputs;
+    files.push_back(a.points);
+    files.push_back(a.ops);
+    check_report_path(a.common, files);
+
+    const PointSet input = read_point_set(a.points);
+    if (input.dimension != a.dim)
+        throw InvalidInput(a.points + ": a " + std::to_string(input.dimension) +
+                           "D point set, but --dim is " + std::to_string(a.dim));
+    if (a.dim == 2)
+        run_dim<2>(a, input, offcenter);
+    else
+        run_dim<3>(a, input, offcenter);
 }
 
 }  // namespace
@@ -327,28 +550,39 @@ void register_quadtree(CLI::App& root, int& result) {
     auto args = std::make_shared<QuadtreeArgs>();
     CLI::App* sub = root.add_subcommand(
         "qmesh",
-        "Balanced quadtree of a 2D point set, updated by an insert/erase script, and its quality "
-        "triangle mesh (every point a vertex, angles in [18.43, 135] deg)");
-    sub->add_option("points", args->points, "Input points (.node, or 'x y' per line)")->required();
+        "Balanced quadtree (2D) or octree (3D) of a point set, updated by an insert/erase "
+        "script, and its quality mesh with every point a vertex: triangles with angles in "
+        "[18.43, 135] deg (or, with --rho, an off-center Delaunay mesh), tetrahedra with "
+        "dihedral angles in [13.1, 164.3] deg");
+    sub->add_option("points", args->points,
+                    "Input points (.node, or 'x y' / 'x y z' per line), of dimension --dim")
+        ->required();
     sub->add_option("-o,--output", args->output,
-                    "Output mesh: .node (writes .node + .ele) or .off .obj .ply .vtk .vtp (z = 0)")
+                    "Output mesh by extension: .node (writes OUT.node + OUT.ele, Triangle/TetGen), "
+                    ".off (3D: the boundary surface), .vtu (VTK unstructured grid), .mesh "
+                    "(Medit); 2D also .obj .ply .vtk .vtp (z = 0)")
         ->required();
     sub->add_option("--ops", args->ops,
-                    "Update script applied in order after the build: '+ x y' inserts, '- x y' "
-                    "erases (# comments)");
-    sub->add_option("--dim", args->dim, "Dimension (only 2)")->capture_default_str();
-    sub->add_option("--rho", args->rho,
-                    "Off-center (Har-Peled-Ungor) Delaunay mesh with radius-edge ratio <= RHO (> sqrt(2); "
-                    "sqrt(2) ~ 20.7 deg) instead of the quadtree postprocess")
-        ->check(finite_number());
+                    "Update script applied in order after the build: '+ x y [z]' inserts, "
+                    "'- x y [z]' erases (# comments); each update is timed in the report");
+    sub->add_option("--dim", args->dim, "Dimension: 2 (quadtree, triangles) or 3 (octree, "
+                                        "tetrahedra)")
+        ->capture_default_str();
+    args->rho_option =
+        sub->add_option("--rho", args->rho,
+                        "2D only: off-center (Har-Peled-Ungor) Delaunay mesh with radius-edge "
+                        "ratio <= RHO (> sqrt(2); sqrt(2) ~ 20.7 deg) instead of the quadtree "
+                        "postprocess")
+            ->check(finite_number());
     sub->add_option("--domain", args->domain,
-                    "Domain box 'X0,Y0,W' (every point must lie in its middle third), or 'auto': "
-                    "centred on the bounding box of the points and all inserted points, 4x its "
-                    "larger extent. Output is in input coordinates either way")
+                    "Domain box 'X0,Y0,W' (2D) or 'X0,Y0,Z0,W' (3D); every point must lie in "
+                    "its middle third. Or 'auto': centred on the bounding box of the points and "
+                    "all inserted points, 4x its larger extent. Output is in input coordinates "
+                    "either way")
         ->capture_default_str();
     sub->add_flag("--check", args->check,
-                  "Verify the tree invariants, the mesh (conforming, CCW, covers the box) and the "
-                  "angle bounds");
+                  "Verify the tree invariants, the mesh (conforming, positively oriented, covers "
+                  "the box) and the angle (2D) or dihedral-angle (3D) bounds");
     sub->alias("quadtree");
     add_common_options(*sub, args->common);
     sub->callback([args, &result] { result = guarded("qmesh", [&] { run_quadtree(*args); }); });

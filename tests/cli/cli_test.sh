@@ -203,7 +203,125 @@ quadtree_bad)
     printf '+ 0.0476694 0.809168\n' > dupop.txt
     expect_error "dupop.txt:1" "$pts" --ops dupop.txt
     expect_error "middle third" "$pts" --domain 0,0,1
-    expect_error "only 2" "$pts" --dim 3
+    expect_error "--dim is 3" "$pts" --dim 3
+    expect_error "rho" "$pts" --rho 1.2
+    # 3D: dimension mismatch both ways, NaN, duplicates, a missing point, outside the domain,
+    # malformed ops lines, and cells too small for double precision (spread too large).
+    printf '0.1 0.2 0.3\n0.5 0.5 0.5\n0.7 0.1 0.4\n' > p3.xyz
+    expect_error "--dim is 2" p3.xyz
+    expect_error "2D only" p3.xyz --dim 3 --rho 1.5
+    printf '0.1 0.2 0.3\nnan 0.5 0.5\n' > nan3.xyz
+    expect_error "nan3.xyz:2" nan3.xyz --dim 3
+    printf '# three points\n0.1 0.2 0.3\n0.5 0.5 0.5\n0.1 0.2 0.3\n' > dup3.xyz
+    expect_error "dup3.xyz:4" dup3.xyz --dim 3
+    printf '+ 0.2 0.2 0.2\n- 0.5 0.5 0.25\n' > missing3.txt
+    expect_error "missing3.txt:2" p3.xyz --dim 3 --ops missing3.txt
+    printf '+ 0.5 0.5 0.5\n' > dupop3.txt
+    expect_error "dupop3.txt:1" p3.xyz --dim 3 --ops dupop3.txt
+    printf '+ 0.2 0.2\n' > short3.txt
+    expect_error "short3.txt:1" p3.xyz --dim 3 --ops short3.txt
+    printf '+ 0.2 nan 0.2\n' > nanop3.txt
+    expect_error "nanop3.txt:1" p3.xyz --dim 3 --ops nanop3.txt
+    expect_error "middle third" p3.xyz --dim 3 --domain 0,0,0,1
+    printf '+ 5 0 0\n' > far3.txt
+    expect_error "far3.txt:1" p3.xyz --dim 3 --domain -1,-1,-1,3 --ops far3.txt
+    expect_error "X0,Y0,Z0,W" p3.xyz --dim 3 --domain 0,0,1
+    printf '+ 0.5 0.5 0.50000000000001\n' > close3.txt
+    expect_error "underflow" p3.xyz --dim 3 --ops close3.txt
+    printf '0 0 0\n1e-310 1e-310 1e-310\n' > tiny3.xyz
+    expect_error "underflow" tiny3.xyz --dim 3
+    printf '0 0\n1 1\n1 1.00000000000001\n' > close2.xy
+    expect_error "underflow" close2.xy
+    run 1 "$bin" qmesh p3.xyz --dim 3 -o out.ply --quiet
+    grep -q "unsupported extension" err.txt || fail "3D .ply output accepted: $(cat err.txt)"
+    ;;
+qmesh_3d)
+    # ~20 random 3D points, an update script (erase, insert, erase an inserted point, re-insert
+    # an erased one) and the final point set, with exact coordinates.
+    python3 - <<'PY' || fail "could not generate the 3D points"
+import random
+random.seed(11)
+pt = lambda: tuple(repr(round(random.uniform(-2, 3), 6)) for _ in range(3))
+pts = [pt() for _ in range(16)]
+new = [pt() for _ in range(3)]
+ops = [("-",) + pts[0], ("-",) + pts[7], ("+",) + new[0], ("+",) + new[1], ("-",) + new[0],
+       ("+",) + new[2], ("+",) + pts[7]]
+final = pts[1:] + [new[1], new[2]]
+with open("p3.xyz", "w") as f:
+    f.write("# random 3D points\n")
+    for q in pts: f.write(" ".join(q) + "\n")
+with open("ops3.txt", "w") as f:
+    for o in ops: f.write(" ".join(o) + "\n")
+with open("final3.node", "w") as f:
+    f.write("%d 3 0 0\n" % len(final))
+    for i, q in enumerate(final): f.write("%d %s %s %s\n" % ((i + 1,) + q))
+PY
+    run 0 "$bin" qmesh p3.xyz --dim 3 --ops ops3.txt -o a.node --report a.json --check --quiet
+    [ -s a.node ] && [ -s a.ele ] || fail "no a.node / a.ele"
+    [ "$(head -1 a.ele | awk '{print $2}')" = 4 ] || fail "a.ele header is not of tetrahedra"
+    awk 'NR > 1 && NF != 5 { exit 1 }' a.ele || fail "a.ele lines are not 'id a b c d'"
+    for k in vertices elements min_dihedral_deg max_dihedral_deg seconds_build ops dim; do
+        json_get a.json "['$k']" >/dev/null || fail "3D report lacks $k"
+    done
+    python3 - <<'PY' || fail "bad 3D report"
+import json
+d = json.load(open("a.json"))
+assert d["dim"] == 3 and d["points"] == 17, d
+assert [o["op"] for o in d["ops"]] == ["-", "-", "+", "+", "-", "+", "+"], d["ops"]
+assert all(o["seconds"] >= 0 for o in d["ops"]), d["ops"]
+assert d["min_dihedral_deg"] >= 13.1 and d["max_dihedral_deg"] <= 164.3, d
+assert d["elements"] == int(open("a.ele").readline().split()[0])
+assert d["vertices"] == int(open("a.node").readline().split()[0])
+assert d["check"]["violations"] == 0
+PY
+    dom=$(python3 -c "import json; d=json.load(open('a.json'))['domain']; print(','.join(repr(x) for x in d['origin'] + [d['width']]))")
+    run 0 "$bin" qmesh final3.node --dim 3 --domain "$dom" -o scratch.node --check --quiet
+    cmp -s a.node scratch.node || fail "dynamic and from-scratch 3D .node differ"
+    cmp -s a.ele scratch.ele || fail "dynamic and from-scratch 3D .ele differ"
+    run 0 "$bin" quadtree p3.xyz --dim 3 -o a.vtu --quiet
+    grep -q 'UnstructuredGrid' a.vtu || fail "no VTU output"
+    grep -A1 'Name="types"' a.vtu | tail -1 | grep -qw 10 || fail "VTU cells are not tetrahedra"
+    run 0 "$bin" qmesh p3.xyz --dim 3 -o a.mesh --quiet
+    grep -q '^Dimension 3' a.mesh && grep -q '^Tetrahedra' a.mesh || fail "no Medit tetrahedra"
+    run 0 "$bin" qmesh p3.xyz --dim 3 -o a.off --quiet
+    head -1 a.off | grep -q OFF || fail "no OFF output"
+    ;;
+qmesh_rho)
+    pts=$data/planar/dots.node
+    run 0 "$bin" qmesh "$pts" --rho 1.5 --check -o oc.node --report oc.json --quiet
+    python3 -c "import json; d=json.load(open('oc.json')); assert d['min_angle_deg'] >= 19.47 and d['mesher'] == 'offcenter' and d['dim'] == 2, d" || fail "off-center min angle below 19.47"
+    run 1 "$bin" qmesh "$pts" --rho 1.2 -o bad.node --quiet
+    grep -q rho err.txt || fail "--rho 1.2 error does not name rho: $(cat err.txt)"
+    [ -e bad.node ] && fail "an output was written for --rho 1.2"
+    # Update script over dots.node and the final point set; dynamic == from scratch.
+    python3 - "$pts" <<'PY' || fail "could not generate the ops file"
+import sys
+rows = [r for r in (l.split('#')[0].split() for l in open(sys.argv[1])) if r]
+pts = [(r[1], r[2]) for r in rows[1:]]
+ops, final = [], list(pts)
+for k in (1, 8, 20, 33):
+    ops.append(("-",) + pts[k]); final.remove(pts[k])
+for k in range(4):
+    a, b = pts[50 + k], pts[70 + k]
+    q = (repr((float(a[0]) + float(b[0])) / 2), repr((float(a[1]) + float(b[1])) / 2))
+    ops.append(("+",) + q); final.append(q)
+ops.append(("-",) + final[-1]); final.pop()
+ops.append(("+",) + pts[8]); final.append(pts[8])
+with open("ops.txt", "w") as f:
+    for o in ops: f.write(" ".join(o) + "\n")
+with open("final.xy", "w") as f:
+    for q in final: f.write("%s %s\n" % q)
+PY
+    run 0 "$bin" qmesh "$pts" --rho 1.5 --ops ops.txt -o dyn.node --report dyn.json --check --quiet
+    [ "$(json_get dyn.json "['ops'].__len__()")" -eq "$(grep -c '^[-+]' ops.txt)" ] || fail "ops not all timed"
+    dom=$(python3 -c "import json; d=json.load(open('dyn.json'))['domain']; print(','.join(repr(x) for x in d['origin'] + [d['width']]))")
+    run 0 "$bin" qmesh final.xy --rho 1.5 --domain "$dom" -o scratch.node --check --quiet
+    cmp -s dyn.node scratch.node || fail "dynamic and from-scratch off-center .node differ"
+    cmp -s dyn.ele scratch.ele || fail "dynamic and from-scratch off-center .ele differ"
+    run 0 "$bin" qmesh "$pts" --rho 1.5 -o oc.vtu --quiet
+    grep -A1 'Name="types"' oc.vtu | tail -1 | grep -qw 5 || fail "VTU cells are not triangles"
+    run 0 "$bin" qmesh "$pts" -o q.mesh --quiet
+    grep -q '^Triangles' q.mesh || fail "no Medit triangles"
     ;;
 deform_scenarios)
     # Every built-in scenario, small, with the invariant checks on; the mesh at every time as PLY.
