@@ -202,6 +202,62 @@ private:
     Vec3 axis_;
 };
 
+class DimpleWarp final : public CyclicWarp {
+public:
+    DimpleWarp(std::vector<Point3> centers, std::vector<Vec3> displacements, double radius,
+               double rate)
+        : CyclicWarp("make_dimple_warp", Point3{0, 0, 0}, rate),
+          c_(std::move(centers)),
+          d_(std::move(displacements)) {
+        const char* who = "make_dimple_warp";
+        check_positive(who, "radius", radius);
+        if (c_.empty()) throw InvalidInput("make_dimple_warp: no centre");
+        if (c_.size() != d_.size())
+            throw InvalidInput("make_dimple_warp: " + std::to_string(c_.size()) +
+                               " centres but " + std::to_string(d_.size()) + " displacements");
+        double dmax = 0;
+        for (std::size_t k = 0; k < c_.size(); ++k) {
+            if (!is_finite(c_[k]) || !is_finite(d_[k]))
+                throw InvalidInput("make_dimple_warp: centre or displacement " +
+                                   std::to_string(k) + " is not finite");
+            dmax = std::max(dmax, norm(d_[k]));
+        }
+        for (std::size_t i = 0; i < c_.size(); ++i)
+            for (std::size_t j = i + 1; j < c_.size(); ++j)
+                if (distance(c_[i], c_[j]) < 2.0 * radius)
+                    throw InvalidInput("make_dimple_warp: centres " + std::to_string(i) + " and " +
+                                       std::to_string(j) + " are " +
+                                       fmt(distance(c_[i], c_[j])) + " apart, closer than 2 radius = " +
+                                       fmt(2.0 * radius) + " (the supports overlap)");
+        const double lip = dmax * kDimpleBumpSlope / radius;
+        if (!(lip < 1.0))
+            throw InvalidInput("make_dimple_warp: the displacement field has Lipschitz constant " +
+                               fmt(lip) + " >= 1 (largest displacement " + fmt(dmax) +
+                               ", radius " + fmt(radius) +
+                               "): not a diffeomorphism; use a larger radius or smaller "
+                               "displacements");
+        r2_ = radius * radius;
+    }
+    [[nodiscard]] std::string name() const override { return "dimple"; }
+    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
+        const double p = cycle_profile(u(t));
+        if (p == 0.0) return x;
+        for (std::size_t k = 0; k < c_.size(); ++k) {
+            const double d2 = sqdistance(x, c_[k]);
+            if (d2 < r2_) {  // the supports are disjoint: at most one centre moves x
+                const double q = 1.0 - d2 / r2_;
+                return x + d_[k] * (p * q * q * q);
+            }
+        }
+        return x;
+    }
+
+private:
+    std::vector<Point3> c_;
+    std::vector<Vec3> d_;
+    double r2_ = 0;
+};
+
 // ---- a uniform hash grid -------------------------------------------------------------------
 
 /// Points in cubic cells of side `cell`, found through an open-addressing table keyed by
@@ -418,8 +474,8 @@ HashGrid grid_of(std::span<const Point3> pts, double cell) {
 // ---- scenario construction -----------------------------------------------------------------
 
 const std::vector<std::string>& analytic_names() {
-    static const std::vector<std::string> names{"pulse", "stretch", "twist", "bend", "boomerang",
-                                                "rotate"};
+    static const std::vector<std::string> names{"pulse",     "stretch", "twist", "bend",
+                                                "boomerang", "rotate",  "dimple"};
     return names;
 }
 const std::vector<std::string>& warp_names() {
@@ -584,6 +640,39 @@ void finish(Scenario& s) {
     s.lambda = 1.05 * max_speed(*s.warp, s.rate, pool);
 }
 
+/// The "dimple" warp of a unit-sphere scenario whose reference and P(0) are built (see
+/// make_scenario); `motion` receives its description.
+std::unique_ptr<Warp> dimple_warp(const Scenario& s, double rate, std::string& motion) {
+    std::vector<Point3> p0;
+    p0.reserve(s.initial.size());
+    for (std::uint32_t i : s.initial) p0.push_back(s.reference.positions()[i]);
+    const double h0 = covering_radius(reference_probes(s.reference), p0);
+    const double rho = 2.5 * h0, slide = h0, lift = 0.25 * h0;
+    std::vector<Point3> centers;
+    for (std::size_t k = 64; k >= 1; --k) {
+        centers = fibonacci_sphere(k);
+        double dmin = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < k; ++i)
+            for (std::size_t j = i + 1; j < k; ++j)
+                dmin = std::min(dmin, distance(centers[i], centers[j]));
+        if (dmin >= 2.2 * rho) break;
+    }
+    const double golden = kPi * (3.0 - std::sqrt(5.0));
+    std::vector<Vec3> disp;
+    disp.reserve(centers.size());
+    for (std::size_t k = 0; k < centers.size(); ++k) {
+        const Point3& c = centers[k];
+        const Vec3 east = normalized(cross(Vec3{0, 0, 1}, c));  // no lattice point is a pole
+        const Vec3 north = cross(c, east);
+        const double a = golden * static_cast<double>(k);
+        disp.push_back((east * std::cos(a) + north * std::sin(a)) * slide + c * lift);
+    }
+    motion = std::to_string(centers.size()) + " dimples (Fibonacci centres, bump radius " +
+             fmt(rho) + " = 2.5 h0): each slides tangentially by up to " + fmt(slide) +
+             " = h0 with an outward lift of " + fmt(lift) + " and back";
+    return make_dimple_warp(std::move(centers), std::move(disp), rho, rate);
+}
+
 Scenario analytic_scenario(const std::string& name, const ScenarioOptions& o, double rate) {
     Scenario s;
     const std::string key = name == "boomerang" ? "bend" : name;
@@ -610,10 +699,10 @@ Scenario analytic_scenario(const std::string& name, const ScenarioOptions& o, do
             s.warp = make_bend_warp(origin, {1, 0, 0}, {0, 1, 0}, 1.0, 2.0 * kPi / 3.0, 3.0, rate);
             motion = "stretched along x to 3:1:1, bent about z into an arc turning by 2pi/3 "
                      "(radius 2.86), then back";
-        } else {  // rotate
+        } else if (key == "rotate") {
             s.warp = make_rotation_warp(origin, {1, 2, 3}, rate);
             motion = "one rigid turn about (1,2,3)";
-        }
+        }  // dimple: the warp depends on h0, made once P(0) is known (below)
     }
     const std::size_t m = o.samples * o.pool_factor;
     const std::vector<Point3> candidates = s.surface0->sample_uniform(m, o.seed);
@@ -643,6 +732,7 @@ Scenario analytic_scenario(const std::string& name, const ScenarioOptions& o, do
         if (vs[v] < o.samples) s.initial.push_back(static_cast<std::uint32_t>(v));
     s.normals0.reserve(s.reference.n_vertices());
     for (const Point3& p : s.reference.positions()) s.normals0.push_back(s.surface0->normal(p));
+    if (key == "dimple") s.warp = dimple_warp(s, rate, motion);
     s.edits = o.edits.value_or(false);
     s.description = shape + ", " + motion + "; pool " + std::to_string(s.pool_size()) +
                     " points (" + std::to_string(m - s.pool_size()) + " dropped by the RDT), " +
@@ -770,6 +860,31 @@ std::unique_ptr<Warp> make_bend_warp(const Point3& center, const Vec3& axis, con
 }
 std::unique_ptr<Warp> make_rotation_warp(const Point3& center, const Vec3& axis, double rate) {
     return std::make_unique<RotationWarp>(center, axis, rate);
+}
+
+double dimple_bump(double r) {
+    if (!(std::abs(r) < 1.0)) return 0.0;
+    const double q = 1.0 - r * r;
+    return q * q * q;
+}
+std::unique_ptr<Warp> make_dimple_warp(std::vector<Point3> centers, std::vector<Vec3> displacements,
+                                       double radius, double rate) {
+    return std::make_unique<DimpleWarp>(std::move(centers), std::move(displacements), radius,
+                                        rate);
+}
+
+std::vector<Point3> fibonacci_sphere(std::size_t n) {
+    if (n == 0) throw InvalidInput("fibonacci_sphere: n must be >= 1");
+    const double golden = kPi * (3.0 - std::sqrt(5.0));
+    std::vector<Point3> out;
+    out.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double z = 1.0 - (2.0 * static_cast<double>(i) + 1.0) / static_cast<double>(n);
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const double phi = golden * static_cast<double>(i);
+        out.push_back(Point3{r * std::cos(phi), r * std::sin(phi), z});
+    }
+    return out;
 }
 
 // ---- scenarios -----------------------------------------------------------------------------

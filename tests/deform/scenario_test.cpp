@@ -31,8 +31,8 @@ std::string blobby() { return test::shared_data("meshes/blobby.off").string(); }
 
 /// Every scenario the tests build, once each (small sizes).
 std::vector<std::string> all_cases() {
-    return {"pulse", "stretch", "twist", "bend", "rotate", "mesh+bend", "mesh+twist",
-            "mesh+pulse"};
+    return {"pulse",     "stretch",   "twist",     "bend",      "rotate",
+            "dimple",    "mesh+bend", "mesh+twist", "mesh+pulse"};
 }
 
 const Scenario& cached(const std::string& key) {
@@ -252,7 +252,8 @@ TEST(Warp, IsExactlyTheIdentityAtTimeZeroAndCloses) {
                 moved = std::max(moved, distance(s.warp->apply(f * s.time_units, x), x));
         }
         EXPECT_LT(back, 1e-9 * s.length_scale);  // one full cycle
-        EXPECT_GT(moved, 0.05 * s.length_scale);  // and it really moves
+        // And it really moves (the dimples move locally, by about one sample spacing).
+        EXPECT_GT(moved, key == "dimple" ? s.h0 : 0.05 * s.length_scale);
     }
 }
 
@@ -326,6 +327,89 @@ TEST(Warp, NormalsAndAreaScale) {
         EXPECT_NEAR(area_scale(rot, 3.7, i), 1.0, 1e-6);
 }
 
+TEST(Warp, DimpleMovesDisjointPatchesOutAndBack) {
+    // Two centres on the unit sphere, 1 apart; radius 0.3; slides of 0.1 (L = 0.57).
+    const std::vector<Point3> c{{1, 0, 0}, normalized(Point3{1, 1, 0})};
+    const std::vector<Vec3> d{{0, 0.1, 0.02}, {0, 0, -0.1}};
+    const double rate = 0.01;  // period 100
+    const auto w = make_dimple_warp(c, d, 0.3, rate);
+    EXPECT_EQ(w->name(), "dimple");
+    EXPECT_EQ(w->apply(0.0, c[0]), c[0]);
+    EXPECT_NEAR(distance(w->apply(50.0, c[0]), c[0] + d[0]), 0, 1e-15);  // the peak
+    EXPECT_NEAR(distance(w->apply(50.0, c[1]), c[1] + d[1]), 0, 1e-15);
+    EXPECT_NEAR(distance(w->apply(25.0, c[0]), c[0] + d[0] * 0.5), 0, 1e-15);
+    EXPECT_NEAR(distance(w->apply(100.0, c[0]), c[0]), 0, 1e-15);  // back after one period
+    // The bump: half way out at the peak, nothing at the rim and beyond.
+    const Point3 mid = c[0] + Vec3{0, 0, 0.15};
+    EXPECT_NEAR(distance(w->apply(50.0, mid), mid + d[0] * dimple_bump(0.5)), 0, 1e-15);
+    EXPECT_DOUBLE_EQ(dimple_bump(0.5), 0.421875);
+    EXPECT_EQ(dimple_bump(1.0), 0.0);
+    EXPECT_EQ(dimple_bump(0.0), 1.0);
+    for (const Point3 x : {Point3{-1, 0, 0}, Point3{0, 0, 1}, c[0] + Vec3{0, 0, 0.3},
+                           Point3{0.7, -0.7, 0}})
+        for (double t : {10.0, 50.0, 77.0}) EXPECT_EQ(w->apply(t, x), x);
+    // The largest slope of the bump is kDimpleBumpSlope.
+    double slope = 0;
+    for (int i = 0; i < 10000; ++i) {
+        const double r = i / 10000.0, e = 1e-7;
+        slope = std::max(slope, std::abs(dimple_bump(r + e) - dimple_bump(r)) / e);
+    }
+    EXPECT_NEAR(slope, kDimpleBumpSlope, 1e-6);
+    // Injective near the surface: distinct points of a grid around c[0] stay distinct and
+    // keep their order along the slide direction (the field is a contraction, L < 1).
+    for (double y = -0.35; y <= 0.35; y += 0.01) {
+        const Point3 a = c[0] + Vec3{0, y, 0}, b = c[0] + Vec3{0, y + 0.01, 0};
+        EXPECT_GT(w->apply(50.0, b).y - w->apply(50.0, a).y, 0.0) << y;
+    }
+}
+
+TEST(Warp, DimpleScenarioFollowsSpecS4) {
+    const Scenario& s = cached("dimple");
+    EXPECT_EQ(s.name, "dimple");
+    EXPECT_NE(s.description.find("dimples"), std::string::npos);
+    EXPECT_FALSE(s.edits);
+    ASSERT_TRUE(s.surface0 != nullptr);
+    const double peak = 0.5 * s.time_units;
+    const double reach = 1.0307764064044151 * s.h0;  // |h0 t_k + h0/4 c_k|
+    std::size_t moved = 0;
+    double largest = 0;
+    for (const Point3& x : s.reference.positions()) {
+        const double m = distance(s.warp->apply(peak, x), x);
+        if (m > 0) ++moved;
+        largest = std::max(largest, m);
+    }
+    // Several disjoint patches move by up to about h0, and the rest of the sphere stays put.
+    EXPECT_LE(largest, reach * (1 + 1e-12));
+    EXPECT_GT(largest, 0.97 * reach);
+    EXPECT_GT(moved, s.pool_size() / 5);
+    EXPECT_LT(moved, s.pool_size() * 4 / 5);
+    // lambda is the speed at a centre, pi * rate * reach, with the 5% margin.
+    EXPECT_NEAR(s.lambda, 1.05 * kPi * s.rate * reach, 0.02 * s.lambda);
+    // Its own warp name is accepted, another one is not.
+    ScenarioOptions o;
+    o.samples = 500;
+    o.steps = 10;
+    o.warp = "dimple";
+    EXPECT_EQ(make_scenario("dimple", o).name, "dimple");
+    o.warp = "bend";
+    expect_invalid([&] { (void)make_scenario("dimple", o); }, "own motion");
+}
+
+TEST(Warp, FibonacciSphere) {
+    for (std::size_t n : {1u, 2u, 16u, 64u}) {
+        const auto p = fibonacci_sphere(n);
+        ASSERT_EQ(p.size(), n);
+        for (std::size_t i = 0; i < n; ++i) {
+            EXPECT_NEAR(norm(p[i]), 1.0, 1e-15);
+            EXPECT_LT(std::abs(p[i].z), 1.0);  // never a pole
+            if (i > 0) {
+                EXPECT_LT(p[i].z, p[i - 1].z);
+            }
+        }
+    }
+    expect_invalid([] { (void)fibonacci_sphere(0); }, "n must be");
+}
+
 TEST(Warp, FactoriesRejectBadParameters) {
     expect_invalid([] { (void)make_pulse_warp({0, 0, 0}, 1.5, 0.0); }, "rate");
     expect_invalid([] { (void)make_stretch_warp({0, 0, 0}, {0, 0, 0}, 3, 1); }, "axis");
@@ -334,6 +418,18 @@ TEST(Warp, FactoriesRejectBadParameters) {
                    "parallel");
     expect_invalid([] { (void)make_bend_warp({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 7, 1, 1); },
                    "max_turn");
+    const std::vector<Point3> two{{1, 0, 0}, {0, 1, 0}};  // sqrt 2 apart
+    const std::vector<Vec3> small{{0, 0.1, 0}, {0, 0, 0.1}};
+    expect_invalid([&] { (void)make_dimple_warp(two, small, 0.8, 1); }, "supports overlap");
+    expect_invalid([&] { (void)make_dimple_warp(two, {{0, 0.5, 0}, {0, 0, 0}}, 0.5, 1); },
+                   "Lipschitz");
+    expect_invalid([&] { (void)make_dimple_warp(two, {{0, 0.1, 0}}, 0.5, 1); },
+                   "2 centres but 1 displacements");
+    expect_invalid([] { (void)make_dimple_warp({}, {}, 0.5, 1); }, "no centre");
+    expect_invalid([&] { (void)make_dimple_warp(two, small, 0.0, 1); }, "radius");
+    expect_invalid([&] { (void)make_dimple_warp(two, small, 0.5, -1); }, "rate");
+    expect_invalid([&] { (void)make_dimple_warp(two, {{0, NAN, 0}, {0, 0, 0}}, 0.5, 1); },
+                   "not finite");
 }
 
 // ---- sample edits --------------------------------------------------------------------------

@@ -104,8 +104,8 @@ public:
 /// The bump of the dimple warp: (1 - r^2)^3 for r < 1, else 0 (C2, 1 at r = 0, 0 with its
 /// first two derivatives at r = 1).
 [[nodiscard]] double dimple_bump(double r);
-/// Largest |d dimple_bump / dr|: 6 r (1 - r^2)^2 at r^2 = 1/5, i.e. 24 / (5 sqrt 5).
-inline constexpr double kDimpleBumpSlope = 2.146625258399798;
+/// Largest |d dimple_bump / dr|: 6 r (1 - r^2)^2 at r^2 = 1/5, i.e. 96 / (25 sqrt 5).
+inline constexpr double kDimpleBumpSlope = 1.7173002067198384;
 /// "dimple" (spec S4, the Section-6 lower-bound motion as a smooth warp): K local excursions.
 /// A point x within `radius` of centre c_k moves by
 ///   cycle_profile(u) * dimple_bump(|x - c_k| / radius) * displacements[k]
@@ -114,14 +114,15 @@ inline constexpr double kDimpleBumpSlope = 2.146625258399798;
 /// The displacement field is Lipschitz with constant
 ///   L = max_k |displacements[k]| * kDimpleBumpSlope / radius < 1
 /// (the supports are disjoint balls), so x -> x + w(x) is a diffeomorphism of R^3 at every t.
-/// 	hrow InvalidInput when there is no centre, the two lists differ in length, a centre or
+/// \throw InvalidInput when there is no centre, the two lists differ in length, a centre or
 ///        displacement is not finite, radius or rate is not positive and finite, two centres
 ///        are closer than 2 radius (overlapping supports), or L >= 1.
 [[nodiscard]] std::unique_ptr<Warp> make_dimple_warp(std::vector<Point3> centers,
                                                      std::vector<Vec3> displacements,
                                                      double radius, double rate);
 /// The first n points of the spherical Fibonacci lattice on the unit sphere about the origin:
-/// z_i = 1 - (2 i + 1) / n, longitude i * pi (3 - sqrt 5) (n >= 1; none at a pole).
+/// z_i = 1 - (2 i + 1) / n, longitude i * pi (3 - sqrt 5); none is at a pole.
+/// \throw InvalidInput for n = 0.
 [[nodiscard]] std::vector<Point3> fibonacci_sphere(std::size_t n);
 
 // ---- scenarios -----------------------------------------------------------------------------
