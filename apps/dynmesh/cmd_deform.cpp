@@ -207,9 +207,9 @@ void register_deform(CLI::App& root, int& result) {
     CLI::App* sub = root.add_subcommand(
         "deform",
         "Maintain a mesh of a deforming surface known only by moving samples (Cheng-Dey): a built-in "
-        "scenario (pulse, stretch, twist, bend/boomerang, rotate) or a closed mesh file carried by --warp");
+        "scenario (pulse, stretch, twist, bend/boomerang, rotate, dimple) or a closed mesh file carried by --warp");
     sub->add_option("scenario", args->scenario,
-                    "pulse | stretch | twist | bend | boomerang | rotate, or a closed mesh file (.off .obj .ply .stl)")
+                    "pulse | stretch | twist | bend | boomerang | rotate | dimple, or a closed mesh file (.off .obj .ply .stl)")
         ->required();
     sub->add_option("--warp", args->warp, "For a mesh file: bend | twist | pulse | stretch | rotate (default bend)");
     sub->add_option("--steps", args->steps, "Time units of one out-and-back cycle")
