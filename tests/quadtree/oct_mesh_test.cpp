@@ -62,11 +62,6 @@ std::vector<Vec3> lattice_points(std::size_t n, std::uint64_t seed) {
     return out;
 }
 
-/// The worst dihedral angles seen by expect_good_mesh over the whole test run.
-DihedralRangeDeg& observed() {
-    static DihedralRangeDeg r;
-    return r;
-}
 
 /// Validity, quality and "every input point is a vertex", for one tree.
 void expect_good_mesh(const DynQuadtree<3>& tree, const std::string& what) {
@@ -84,8 +79,6 @@ void expect_good_mesh(const DynQuadtree<3>& tree, const std::string& what) {
     EXPECT_LE(a.max, kOctMeshMaxDihedralDeg) << what;
     EXPECT_DOUBLE_EQ(min_dihedral_deg(mesh), a.min);
     EXPECT_DOUBLE_EQ(max_dihedral_deg(mesh), a.max);
-    observed().min = std::min(observed().min, a.min);
-    observed().max = std::max(observed().max, a.max);
     EXPECT_LE(mesh.tets.size(), 48 * mesh.leaves) << what;  // spec §4.6
 }
 
@@ -199,14 +192,6 @@ TEST(OctMesh, CheckerFindsBrokenMeshes) {
     EXPECT_FALSE(check_oct_mesh(out_of_range).empty());
 }
 
-// Runs last in this file (gtest keeps declaration order): reports the worst dihedral angles
-// seen by the tests above, for the documentation of kOctMeshMinDihedralDeg.
-TEST(OctMesh, ZzReportObservedDihedralRange) {
-    if (observed().min > observed().max) GTEST_SKIP() << "no mesh measured";
-    std::cout << "[oct_mesh] observed dihedral range over the tests: [" << observed().min
-              << ", " << observed().max << "] degrees\n";
-    EXPECT_GE(observed().min, kOctMeshMinDihedralDeg);
-}
 
 }  // namespace
 }  // namespace dynmesh
