@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/io/mesh_io.hpp"
@@ -395,13 +396,7 @@ private:
         return {f(p.x), f(p.y), f(p.z)};
     }
     [[nodiscard]] std::size_t hash(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-        h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-        h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-        h ^= h >> 31;
-        h *= 0xD6E8FEB86659FD93ull;
-        h ^= h >> 32;
-        return static_cast<std::size_t>(h) & mask_;
+        return static_cast<std::size_t>(hash_cell(x, y, z)) & mask_;
     }
     [[nodiscard]] const Slot* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
         for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {

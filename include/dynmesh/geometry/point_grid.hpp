@@ -17,6 +17,17 @@
 
 namespace dynmesh {
 
+/// A well-mixed 64-bit hash of integer cell coordinates (for hash tables of grid cells).
+[[nodiscard]] inline std::uint64_t hash_cell(std::int64_t x, std::int64_t y, std::int64_t z) {
+    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    h ^= h >> 31;
+    h *= 0xD6E8FEB86659FD93ull;
+    h ^= h >> 32;
+    return h;
+}
+
 class PointGrid {
 public:
     /// \pre cell > 0 and finite.
