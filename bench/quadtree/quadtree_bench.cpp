@@ -1,5 +1,5 @@
 /// Single insert/erase updates of the dynamic balanced quadtree (2D: n = 1e3 ... 1e6; 3D:
-/// 1e3 ... 1e5), uniform and clustered inputs, against rebuilding a quality mesh of the same
+/// 1e3 ... 1e5), uniform and clustered inputs, and versus spread at n = 1e4, against rebuilding a quality mesh of the same
 /// points with CGAL's 2D Delaunay mesher (refine_Delaunay_mesh_2, B = sqrt(2), about 20.7
 /// degrees) in the same run. Prints per-update times and the rebuild/update ratio.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -73,6 +74,36 @@ void BM_Update(benchmark::State& state, bool clustered) {
     state.counters["leaves"] = double(f.tree.leaf_count());
 }
 
+/// Spread L/s at fixed n = 10^4: half the points uniform in the middle third, half in a
+/// square cluster of side 10^-k (k = state.range(0)), so the spread grows like 10^k. One
+/// iteration inserts and erases a point inside the cluster (the deepest part of the tree).
+void BM_Update2D_Spread(benchmark::State& state) {
+    static std::map<long, std::pair<DynQuadtree<2>, std::vector<Vec2>>> cache;
+    const long k = static_cast<long>(state.range(0));
+    auto it = cache.find(k);
+    if (it == cache.end()) {
+        Rng rng(7);
+        const double side = std::pow(10.0, -static_cast<double>(k));
+        std::vector<Vec2> pts, queries;
+        for (int i = 0; i < 5000; ++i) pts.push_back({rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)});
+        for (int i = 0; i < 5000; ++i) pts.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
+        for (int i = 0; i < 4096; ++i) queries.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
+        it = cache.emplace(k, std::make_pair(DynQuadtree<2>::build(pts), std::move(queries))).first;
+    }
+    auto& [tree, queries] = it->second;
+    std::size_t i = 0, updates = 0;
+    for (auto _ : state) {
+        const Vec2& q = queries[i++ % queries.size()];
+        if (tree.insert(q) == InsertResult::Inserted) {
+            benchmark::DoNotOptimize(tree.erase(q));
+            updates += 2;
+        }
+    }
+    state.counters["updates_per_iteration"] = double(updates) / double(std::max<std::size_t>(state.iterations(), 1));
+    state.counters["leaves"] = double(tree.leaf_count());
+    state.counters["log10_spread"] = double(k) + 2.0;  // cluster spacing ~ side / 70, box ~ 1
+}
+
 void BM_Update2D_Uniform(benchmark::State& s) { BM_Update<2>(s, false); }
 void BM_Update2D_Clustered(benchmark::State& s) { BM_Update<2>(s, true); }
 void BM_Update3D_Uniform(benchmark::State& s) { BM_Update<3>(s, false); }
@@ -105,6 +136,7 @@ void BM_CgalMesher2D_Rebuild(benchmark::State& state) {
 BENCHMARK(BM_Update2D_Uniform)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Update2D_Clustered)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Update3D_Uniform)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Update2D_Spread)->DenseRange(1, 10, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CgalMesher2D_Rebuild)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
@@ -117,7 +149,10 @@ void print_summary(const dynmesh::bench::RecordingReporter& rep) {
         for (const auto& [n, r] : by_n) {
             // One iteration is an insert and an erase of the same point (two updates).
             const double per = r.seconds / std::max(r.counter("updates_per_iteration", 1.0), 1e-300);
-            std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
+            if (fn == "BM_Update2D_Spread")
+                std::printf("%-24s n=   10000 cluster side 1e-%zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
+            else
+                std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
             if (fn == "BM_Update2D_Uniform" && cgal.count(n))
                 std::printf("   CGAL rebuild %9.4f s = %10.0f x", cgal.at(n).seconds, cgal.at(n).seconds / per);
             std::printf("\n");
