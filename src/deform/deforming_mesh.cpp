@@ -70,6 +70,21 @@ double growth_bound(double kappa) {
 
 std::string id_str(SampleId id) { return "sample " + std::to_string(id); }
 
+/// The largest triangle circumradius of m (infinite for a degenerate triangle), from
+/// R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2), one square root in all.
+double largest_circumradius(const SurfaceMesh& m) {
+    double r2max = 0;
+    for (Face f : m.faces()) {
+        const auto vs = m.face_vertices(f);
+        const Point3 &a = m.position(vs[0]), &b = m.position(vs[1]), &c = m.position(vs[2]);
+        const Vec3 ab = b - a, ac = c - a, bc = c - b;
+        const double den = 4 * sqnorm(cross(ab, ac));
+        const double num = sqnorm(ab) * sqnorm(bc) * sqnorm(ac);
+        r2max = std::max(r2max, den > 0 ? num / den : std::numeric_limits<double>::infinity());
+    }
+    return std::sqrt(r2max);
+}
+
 }  // namespace
 
 struct DeformingMesh::Impl {
@@ -144,20 +159,10 @@ struct DeformingMesh::Impl {
 
     /// Largest circumradius, cached until the mesh changes (touch()).
     [[nodiscard]] double max_circumradius() const {
-        if (R_valid) return R_cache;
-        double r2max = 0;
-        for (Face f : mesh.faces()) {
-            const auto vs = mesh.face_vertices(f);
-            const Point3 &a = mesh.position(vs[0]), &b = mesh.position(vs[1]), &c = mesh.position(vs[2]);
-            // R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2)
-            const Vec3 ab = b - a, ac = c - a, bc = c - b;
-            const double den = 4 * sqnorm(cross(ab, ac));
-            const double num = sqnorm(ab) * sqnorm(bc) * sqnorm(ac);
-            const double r2 = den > 0 ? num / den : std::numeric_limits<double>::infinity();
-            r2max = std::max(r2max, r2);
+        if (!R_valid) {
+            R_cache = largest_circumradius(mesh);
+            R_valid = true;
         }
-        R_cache = std::sqrt(r2max);
-        R_valid = true;
         return R_cache;
     }
     void touch() { R_valid = false; }
@@ -604,11 +609,16 @@ struct DeformingMesh::Impl {
         mesh = std::move(m);
         touch();
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
+        // The samples that were vertices or dormant (queued insertions stay queued).
+        std::vector<SampleId> reassign;
         for (SampleId s = 0; s < state.size(); ++s) {
             dl[s].clear();
             vert_of[s] = Vertex();
             owner[s] = kNoSample;
-            if (state[s] == State::Vertex || state[s] == State::Dormant) state[s] = State::Pending;
+            if (state[s] == State::Vertex || state[s] == State::Dormant) {
+                state[s] = State::Pending;
+                reassign.push_back(s);
+            }
         }
         std::uint32_t i = 0;
         for (Vertex v : mesh.vertices()) make_vertex(vs[i++], v);
@@ -616,8 +626,8 @@ struct DeformingMesh::Impl {
         for (Edge e : mesh.edges()) L = std::max(L, distance(mesh.position(mesh.vertex(e, 0)), mesh.position(mesh.vertex(e, 1))));
         PointGrid grid = vertex_grid(std::max(L, 1e-300));
         auto posf = [&](std::uint32_t s) { return P(s); };
-        for (SampleId s = 0; s < state.size(); ++s) {
-            if (state[s] != State::Pending || is_pending_insert(s)) continue;
+        for (SampleId s : reassign) {
+            if (state[s] != State::Pending) continue;  // became a vertex of m
             const auto [w, d] = grid.nearest(P(s), posf, [&](std::uint32_t x) { return state[x] == State::Vertex; });
             attach(s, w);
         }
@@ -646,10 +656,6 @@ struct DeformingMesh::Impl {
         install_mesh(SurfaceMesh::from_soup(soup), vs);
     }
 
-    bool is_pending_insert(SampleId s) const {
-        return std::binary_search(pending_sorted.begin(), pending_sorted.end(), s);
-    }
-    std::vector<SampleId> pending_sorted;
 };
 
 // ---- construction ---------------------------------------------------------------------------
@@ -679,7 +685,8 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
     I.params = params;
     I.grow(positions.size());
     std::copy(positions.begin(), positions.end(), I.pos.begin());
-    std::fill(I.state.begin(), I.state.end(), State::Pending);
+    // Every sample is in P(0): install_mesh() makes it a vertex or places it in a dormant list.
+    std::fill(I.state.begin(), I.state.end(), State::Dormant);
     I.live = positions.size();
     {   // coincident samples
         std::vector<std::uint32_t> order(positions.size());
@@ -714,22 +721,10 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
             h0 = std::max(h0, g.nearest(q, posf, [](std::uint32_t) { return true; }).second);
         I.init.h0_estimated = true;
     } else if (initial.mesh != nullptr) {
-        double R = 0;
-        for (Face f : initial.mesh->faces()) {
-            const auto vs = initial.mesh->face_vertices(f);
-            R = std::max(R, circumradius(initial.mesh->position(vs[0]), initial.mesh->position(vs[1]),
-                                         initial.mesh->position(vs[2])));
-        }
-        h0 = R;
+        h0 = largest_circumradius(*initial.mesh);
         I.init.h0_estimated = true;
     } else {
-        const SurfaceMesh m = reconstruct_advancing_front(positions);
-        double R = 0;
-        for (Face f : m.faces()) {
-            const auto vs = m.face_vertices(f);
-            R = std::max(R, circumradius(m.position(vs[0]), m.position(vs[1]), m.position(vs[2])));
-        }
-        h0 = R;
+        h0 = largest_circumradius(reconstruct_advancing_front(positions));
         I.init.h0_estimated = true;
     }
     if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
@@ -911,12 +906,9 @@ UpdateReport DeformingMesh::update() {
     I.cur = {};
     rep.R_before = I.max_circumradius();
     const bool broken = I.folded_now > I.folded_at_step;
-    I.pending_sorted = I.pending_insert;
-    std::sort(I.pending_sorted.begin(), I.pending_sorted.end());
     if (broken) I.rebuild();
     I.refine_vert();
     I.insertion();
-    I.pending_sorted.clear();
     I.deletion();
     I.spacing_repair();
     if (rep.emergency && (I.folded_edges() > I.folded_at_step || has_self_intersections(I.mesh))) {

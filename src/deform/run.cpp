@@ -72,6 +72,12 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     GroundTruth truth(s);
     std::vector<Point3> pos(x0.size());
     std::vector<std::uint32_t> vertex_pool, live_pool;
+    // Pool indices of the live samples, into live_pool.
+    auto collect_live_pool = [&] {
+        live_pool.clear();
+        for (SampleId id = 0; id < pool_of.size(); ++id)
+            if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
+    };
 
     auto measure = [&](int t, const UpdateCounters& c, bool updated, bool emergency, std::size_t nviol) {
         DeformLogRow row;
@@ -94,9 +100,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             const SurfaceMesh& m = dm.mesh();
             vertex_pool.assign(m.vertices_size(), 0);
             for (Vertex v : m.vertices()) vertex_pool[v.idx()] = pool_of[dm.sample_of(v)];
-            live_pool.clear();
-            for (SampleId id = 0; id < pool_of.size(); ++id)
-                if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
+            collect_live_pool();
             truth.set_time(t);
             row.metrics = truth.measure(m, vertex_pool, live_pool, mo);
             row.measured = full;
@@ -137,9 +141,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
         bool emergency = false;
         if (due) {
             if (s.edits) {
-                live_pool.clear();
-                for (SampleId id = 0; id < pool_of.size(); ++id)
-                    if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
+                collect_live_pool();
                 const SampleEdits e = plan_sample_edits(s, t, live_pool, s.h0);
                 for (std::uint32_t q : e.insert_pool) {
                     const Point3 p0 = s.reference.position(Vertex(q));
