@@ -35,6 +35,30 @@ const std::vector<std::array<int, D>>& block3() {
     return v;
 }
 
+/// Z-order (Morton order) of grid points without forming the interleaved key: compare along
+/// the axis whose coordinates differ in the most significant bit.
+template <int D>
+bool z_less(const std::array<std::uint64_t, D>& a, const std::array<std::uint64_t, D>& b) {
+    int axis = 0;
+    std::uint64_t best = 0;
+    for (int i = 0; i < D; ++i) {
+        const std::uint64_t x = a[i] ^ b[i];
+        if (best < x && best < (best ^ x)) {  // msb(best) < msb(x)
+            axis = i;
+            best = x;
+        }
+    }
+    return a[axis] < b[axis];
+}
+
+/// The (2k+1)^D block offsets for isolation radius k = 1 or 2.
+template <int D>
+const std::vector<std::array<int, D>>& block_k(int k) {
+    static const auto v1 = offsets<D>(1);
+    static const auto v2 = offsets<D>(2);
+    return k == 2 ? v2 : v1;
+}
+
 template <int D>
 std::string fmt_point(const PointD<D>& p) {
     std::string s = "(";
@@ -179,7 +203,7 @@ std::uint64_t DynQuadtree<D>::count_in(const Key& x) const {
             DYNMESH_ASSERT(it->second.is_leaf, "count_in: deepest stored ancestor is internal");
             std::uint64_t c = 0;
             for (const Entry& e : it->second.points)
-                if (cell_of(e.g, x.level) == x) ++c;
+                if (cell_of(e.grid, x.level) == x) ++c;
             return c;
         }
         DYNMESH_ASSERT(y.level < kLevels, "count_in: root missing");
@@ -192,7 +216,7 @@ template <int D>
 bool DynQuadtree<D>::is_crowded(const Key& x) const {
     if (count_in(x) == 0) return false;
     std::uint64_t sum = 0;
-    for (const auto& o : block3<D>()) {
+    for (const auto& o : block_k<D>(isolation_radius())) {
         Key y;
         if (offset_cell(x, o, y)) sum += count_in(y);
         if (sum >= 2) return true;
@@ -206,7 +230,7 @@ bool DynQuadtree<D>::contains(const Point& p) const {
     if (snap(p, g) != InsertResult::Inserted) return false;
     const Node& leaf = find_leaf(g);
     return std::any_of(leaf.points.begin(), leaf.points.end(),
-                       [&](const Entry& e) { return e.g == g; });
+                       [&](const Entry& e) { return e.grid == g; });
 }
 
 // ---- updates --------------------------------------------------------------------------------
@@ -218,7 +242,7 @@ InsertResult DynQuadtree<D>::insert(const Point& p) {
     std::vector<Node*> path;
     Node& leaf = find_leaf(g, &path);
     for (const Entry& e : leaf.points)
-        if (e.g == g) return InsertResult::Duplicate;
+        if (e.grid == g) return InsertResult::Duplicate;
     for (Node* n : path) ++n->count;
     leaf.points.push_back({g, p});
     ++size_;
@@ -233,7 +257,7 @@ EraseResult DynQuadtree<D>::erase(const Point& p) {
     std::vector<Node*> path;
     Node& leaf = find_leaf(g, &path);
     const auto it = std::find_if(leaf.points.begin(), leaf.points.end(),
-                                 [&](const Entry& e) { return e.g == g; });
+                                 [&](const Entry& e) { return e.grid == g; });
     if (it == leaf.points.end()) return EraseResult::NotFound;
     leaf.points.erase(it);
     for (Node* n : path) --n->count;
@@ -243,14 +267,53 @@ EraseResult DynQuadtree<D>::erase(const Point& p) {
 }
 
 template <int D>
+void DynQuadtree<D>::push_u_support(const Key& x, int delta, std::vector<Key>& bucket) {
+    for (const auto& o : block3<D>()) {
+        Key y;
+        if (!offset_cell(x, o, y) || y == x) continue;
+        auto yt = state_.find(y);
+        if (yt == state_.end()) yt = state_.emplace(y, CellState{}).first;
+        yt->second.support += delta;
+        DYNMESH_ASSERT(yt->second.support >= 0, "negative support from rule U");
+        ++last_update_.support_updates;
+        bucket.push_back(y);
+    }
+}
+
+template <int D>
 void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<Node*>& path) {
     last_update_ = {};
+    const bool mesh = options_.mode == QuadtreeMode::Mesh;
+    const int k = isolation_radius();
     std::vector<std::vector<Key>> buckets(kLevels + 1);
 
-    // Step 2: crowding flags of the cells whose N_1 block contains p, level by level downwards.
-    // Counts of the 5^D cells around p's cell are cached per level (index by offset + 2).
-    constexpr int kSide = 5;
-    constexpr int kCache = D == 2 ? 25 : 125;
+    // Step 1 (mesh mode): rule R follows |P| > 0, rule U follows the counts of the I-cells on
+    // p's path (counts already updated; an internal node is an I-cell).
+    if (mesh) {
+        const std::uint64_t now = sign > 0 ? 1 : 0;  // the count that means "crossed 0 <-> 1"
+        if (size_ == now) {
+            const Key root = root_key();
+            auto it = state_.find(root);
+            if (it == state_.end()) it = state_.emplace(root, CellState{}).first;
+            it->second.support += sign;
+            DYNMESH_ASSERT(it->second.support >= 0, "negative support from rule R");
+            ++last_update_.support_updates;
+            buckets[kLevels].push_back(root);
+        }
+        for (std::size_t depth = 0; depth < path.size() && !path[depth]->is_leaf; ++depth)
+            if (path[depth]->count == now) {
+                const Key x = cell_of(g, kLevels - static_cast<int>(depth));
+                push_u_support(x, sign, buckets[x.level]);
+            }
+    }
+
+    // Step 2: crowding flags of the cells whose N_k block contains p, level by level downwards.
+    // Counts of the (4k+1)^D cells around p's cell are cached per level (index by offset + 2k).
+    const int side = 4 * k + 1;
+    int cache_size = 1;
+    for (int i = 0; i < D; ++i) cache_size *= side;
+    std::vector<std::int64_t> cache(static_cast<std::size_t>(cache_size));
+    const auto& block = block_k<D>(k);
     for (int j = kLevels; j >= 0; --j) {
         // If p's cell holds >= 2 points besides p, every cell of this level whose block holds
         // p is crowded before and after iff it holds a point: nothing to do at this level.
@@ -259,31 +322,32 @@ void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<N
             if (besides_p >= 2) continue;
         }
         const Key c = cell_of(g, j);
-        std::array<std::int64_t, kCache> cache;
-        cache.fill(-1);
+        std::fill(cache.begin(), cache.end(), -1);
         auto cnt = [&](const std::array<int, D>& o) -> std::uint64_t {
             int idx = 0;
-            for (int i = D - 1; i >= 0; --i) idx = idx * kSide + (o[i] + 2);
-            if (cache[idx] < 0) {
+            for (int i = D - 1; i >= 0; --i) idx = idx * side + (o[i] + 2 * k);
+            auto& slot = cache[static_cast<std::size_t>(idx)];
+            if (slot < 0) {
                 Key y;
-                cache[idx] = offset_cell(c, o, y) ? static_cast<std::int64_t>(count_in(y)) : 0;
+                slot = offset_cell(c, o, y) ? static_cast<std::int64_t>(count_in(y)) : 0;
             }
-            return static_cast<std::uint64_t>(cache[idx]);
+            return static_cast<std::uint64_t>(slot);
         };
         std::uint64_t others = 0;
-        for (const auto& o : block3<D>()) others += cnt(o);
+        for (const auto& o : block) others += cnt(o);
         if (sign > 0) --others;  // p itself, in cell c
         if (others == 0) break;  // nothing near p at this level, hence none below (spec §3.2)
-        for (const auto& o : block3<D>()) {
+        for (const auto& o : block) {
             Key x;
             if (!offset_cell(c, o, x)) continue;
             bool now = false;
             if (cnt(o) >= 1) {
                 std::uint64_t sum = 0;
-                for (const auto& o2 : block3<D>()) {
+                for (const auto& o2 : block) {
                     std::array<int, D> oo;
                     for (int i = 0; i < D; ++i) oo[i] = o[i] + o2[i];
                     sum += cnt(oo);
+                    if (sum >= 2) break;
                 }
                 now = sum >= 2;
             }
@@ -299,8 +363,10 @@ void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<N
         }
     }
 
-    // Step 3: settle membership in I, smallest level first. Support only flows from level j
-    // to level j + 1, so each cell is final when its level is reached.
+    // Step 3: settle membership in I, smallest level first. Support flows from level j to
+    // level j + 1 (rules A, B) or within level j (rule U, queued in the bucket being drained),
+    // so each cell is final when its level is done. Supports move monotonically (up on an
+    // insert, down on an erase), so no cell flips twice.
     std::vector<std::pair<Key, bool>> flips;
     for (int j = 0; j <= kLevels; ++j) {
         for (std::size_t q = 0; q < buckets[j].size(); ++q) {
@@ -311,14 +377,16 @@ void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<N
             if (want != it->second.in_i) {
                 it->second.in_i = want;
                 flips.emplace_back(x, want);
+                const int delta = want ? 1 : -1;
                 for (const Key& y : up_neighbours(x)) {
                     auto yt = state_.find(y);
                     if (yt == state_.end()) yt = state_.emplace(y, CellState{}).first;
-                    yt->second.support += want ? 1 : -1;
+                    yt->second.support += delta;
                     DYNMESH_ASSERT(yt->second.support >= 0, "negative support in propagation");
                     ++last_update_.support_updates;
                     buckets[j + 1].push_back(y);
                 }
+                if (mesh && count_in(x) > 0) push_u_support(x, delta, buckets[j]);
                 it = state_.find(x);  // emplace may rehash; iterators, not references, die
             }
             if (it->second.support == 0 && !it->second.in_i) state_.erase(it);
@@ -358,7 +426,7 @@ void DynQuadtree<D>::split(const Key& x) {
         for (int i = 0; i < D; ++i) ch.a[i] = 2 * x.a[i] + ((mask >> i) & 1);
         Node child;
         for (const Entry& e : pts)
-            if (cell_of(e.g, ch.level) == ch) child.points.push_back(e);
+            if (cell_of(e.grid, ch.level) == ch) child.points.push_back(e);
         child.count = child.points.size();
         nodes_.emplace(ch, std::move(child));
     }
@@ -409,20 +477,22 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
     }
 
     // Rule C, top-down by level over the points that still have a neighbour: a point whose
-    // cell sees no other point in its 3^D block at level j sees none below (blocks nest), and
+    // cell sees no other point in its N_k block at level j sees none below (blocks nest), and
     // a dropped point never lies in the block of an active point's cell (symmetry).
+    const bool mesh = options.mode == QuadtreeMode::Mesh;
+    const auto& block = block_k<D>(tree.isolation_radius());
     std::vector<Key> crowded;
     std::vector<std::size_t> active(entries.size());
     for (std::size_t i = 0; i < active.size(); ++i) active[i] = i;
     for (int j = kLevels; j >= 0 && active.size() >= 2; --j) {
         std::unordered_map<Key, std::uint64_t, KeyHash> occ;
-        for (std::size_t i : active) ++occ[cell_of(entries[i].g, j)];
+        for (std::size_t i : active) ++occ[cell_of(entries[i].grid, j)];
         std::unordered_set<Key, KeyHash> marked;
         std::vector<std::size_t> next;
         for (std::size_t i : active) {
-            const Key x = cell_of(entries[i].g, j);
+            const Key x = cell_of(entries[i].grid, j);
             std::uint64_t sum = 0;
-            for (const auto& o : block3<D>()) {
+            for (const auto& o : block) {
                 Key y;
                 if (!offset_cell(x, o, y)) continue;
                 if (const auto it = occ.find(y); it != occ.end()) sum += it->second;
@@ -435,18 +505,44 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         active = std::move(next);
     }
 
-    // Rules A and B: close under "x in I => every size-2|x| cell touching x is in I".
+    // "Does cell x hold a point?" (rule U): the points of a cell are contiguous in Z-order and
+    // its lower corner is the cell's Z-order minimum.
+    std::vector<GridPoint> zsorted;
+    if (mesh) {
+        zsorted.reserve(entries.size());
+        for (const Entry& e : entries) zsorted.push_back(e.grid);
+        std::sort(zsorted.begin(), zsorted.end(), z_less<D>);
+    }
+    const auto holds_point = [&](const Key& x) {
+        GridPoint lo;
+        for (int i = 0; i < D; ++i) lo[i] = x.a[i] << x.level;
+        const auto it = std::lower_bound(zsorted.begin(), zsorted.end(), lo, z_less<D>);
+        return it != zsorted.end() && cell_of(*it, x.level) == x;
+    };
+
+    // Close under rules A and B ("x in I => every size-2|x| cell touching x is in I") and, in
+    // mesh mode, U and R.
+    std::vector<Key> work;
+    const auto add = [&](const Key& y) {
+        CellState& s = tree.state_[y];
+        if (!s.in_i) {
+            s.in_i = true;
+            work.push_back(y);
+        }
+    };
     for (const Key& x : crowded) tree.state_[x].crowded = true;
-    std::vector<Key> work = crowded;
-    for (const Key& x : crowded) tree.state_[x].in_i = true;
+    for (const Key& x : crowded) add(x);
+    if (mesh && !entries.empty()) add(root_key());
+    std::vector<Key> holders;  // mesh mode: the I-cells holding a point
     while (!work.empty()) {
         const Key x = work.back();
         work.pop_back();
-        for (const Key& y : up_neighbours(x)) {
-            CellState& s = tree.state_[y];
-            if (!s.in_i) {
-                s.in_i = true;
-                work.push_back(y);
+        for (const Key& y : up_neighbours(x)) add(y);
+        if (mesh && holds_point(x)) {
+            holders.push_back(x);
+            for (const auto& o : block3<D>()) {
+                Key y;
+                if (offset_cell(x, o, y) && y != x) add(y);
             }
         }
     }
@@ -454,6 +550,12 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         s.support += s.crowded ? 1 : 0;
         for (const Key& y : up_neighbours(x)) ++tree.state_.at(y).support;
     }
+    for (const Key& x : holders)
+        for (const auto& o : block3<D>()) {
+            Key y;
+            if (offset_cell(x, o, y) && y != x) ++tree.state_.at(y).support;
+        }
+    if (mesh && !entries.empty()) ++tree.state_.at(root_key()).support;
 
     // Nodes: every I cell is internal; its children not in I are leaves.
     tree.nodes_.clear();
@@ -469,7 +571,7 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
     }
     for (const Entry& e : entries) {
         std::vector<Node*> path;
-        Node& leaf = tree.find_leaf(e.g, &path);
+        Node& leaf = tree.find_leaf(e.grid, &path);
         for (Node* n : path) ++n->count;
         leaf.points.push_back(e);
     }
@@ -490,13 +592,35 @@ std::vector<CellId<D>> DynQuadtree<D>::leaves() const {
 }
 
 template <int D>
+CellKind DynQuadtree<D>::cell_kind(const CellId<D>& c) const {
+    const auto it = nodes_.find(Key{c.index, c.level});
+    if (it == nodes_.end()) return CellKind::Absent;
+    return it->second.is_leaf ? CellKind::Leaf : CellKind::Internal;
+}
+
+template <int D>
+std::span<const typename DynQuadtree<D>::StoredPoint> DynQuadtree<D>::leaf_points(
+    const CellId<D>& c) const {
+    const auto it = nodes_.find(Key{c.index, c.level});
+    if (it == nodes_.end() || !it->second.is_leaf) return {};
+    return it->second.points;
+}
+
+template <int D>
+CellId<D> DynQuadtree<D>::leaf_containing(const GridPoint& g) const {
+    Key k = root_key();
+    while (!nodes_.at(k).is_leaf) k = cell_of(g, k.level - 1);
+    return {k.level, k.a};
+}
+
+template <int D>
 std::vector<std::pair<typename DynQuadtree<D>::GridPoint, typename DynQuadtree<D>::Point>>
 DynQuadtree<D>::points() const {
     std::vector<std::pair<GridPoint, Point>> out;
     out.reserve(size_);
     for (const auto& [k, n] : nodes_)
         if (n.is_leaf)
-            for (const Entry& e : n.points) out.emplace_back(e.g, e.p);
+            for (const Entry& e : n.points) out.emplace_back(e.grid, e.point);
     std::sort(out.begin(), out.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
     return out;
@@ -517,7 +641,9 @@ std::string DynQuadtree<D>::canonical_dump() const {
         s += buf;
     }
     std::snprintf(buf, sizeof buf, "%a", options_.width);
-    s += " width=" + std::string(buf) + " points=" + std::to_string(size_) +
+    s += " width=" + std::string(buf);
+    if (options_.mode == QuadtreeMode::Mesh) s += " mode=mesh";
+    s += " points=" + std::to_string(size_) +
          " leaves=" + std::to_string(ls.size()) + "\n";
     for (const auto& [id, n] : ls) {
         s += std::to_string(id.level);
@@ -526,7 +652,7 @@ std::string DynQuadtree<D>::canonical_dump() const {
             s += std::to_string(v);
         }
         std::vector<GridPoint> gs;
-        for (const Entry& e : n->points) gs.push_back(e.g);
+        for (const Entry& e : n->points) gs.push_back(e.grid);
         std::sort(gs.begin(), gs.end());
         for (const GridPoint& g : gs) {
             s += " |";
@@ -586,7 +712,7 @@ std::vector<std::string> DynQuadtree<D>::check_invariants() const {
             leaf_points += n.points.size();
             if (n.count != n.points.size()) bad.push_back(name(x) + ": leaf count mismatch");
             for (const Entry& e : n.points)
-                if (cell_of(e.g, x.level) != x) bad.push_back(name(x) + ": point outside leaf");
+                if (cell_of(e.grid, x.level) != x) bad.push_back(name(x) + ": point outside leaf");
             if (n.points.size() >= 2) bad.push_back(name(x) + ": self-crowded leaf");
             if (x.level < 1) bad.push_back(name(x) + ": leaf smaller than 2 grid units");
         } else {
@@ -644,6 +770,7 @@ std::vector<std::string> DynQuadtree<D>::check_invariants() const {
     if (state_.size() != internal)
         bad.push_back("state holds " + std::to_string(state_.size()) + " cells, tree has " +
                       std::to_string(internal) + " internal cells");
+    const bool mesh = options_.mode == QuadtreeMode::Mesh;
     std::unordered_map<Key, int, KeyHash> support;
     for (const auto& [x, s] : state_) {
         const auto it = nodes_.find(x);
@@ -655,7 +782,31 @@ std::vector<std::string> DynQuadtree<D>::check_invariants() const {
             if (!state_.contains(y)) bad.push_back(name(x) + ": rule B/A violated at " + name(y));
             ++support[y];
         }
+        if (mesh && count_in(x) > 0)
+            for (const auto& o : block3<D>()) {
+                Key y;
+                if (!offset_cell(x, o, y) || y == x) continue;
+                if (!state_.contains(y)) bad.push_back(name(x) + ": rule U violated at " + name(y));
+                ++support[y];
+            }
     }
+    if (mesh && size_ > 0) {
+        if (!state_.contains(root_key())) bad.push_back("rule R violated: the root is a leaf");
+        ++support[root_key()];
+    }
+    // Mesh mode: every leaf touching a point leaf has its size (spec §1.4).
+    if (mesh)
+        for (const auto& [x, n] : nodes_) {
+            if (!n.is_leaf || n.points.empty()) continue;
+            for (const auto& o : block3<D>()) {
+                Key y;
+                if (!offset_cell(x, o, y) || y == x) continue;
+                const auto it = nodes_.find(y);
+                if (it == nodes_.end() || !it->second.is_leaf)
+                    bad.push_back(name(x) + ": point leaf whose neighbour " + name(y) +
+                                  " is not a leaf of its size");
+            }
+        }
     for (const auto& [x, s] : state_) {
         if (s.support != support[x])
             bad.push_back(name(x) + ": stored support " + std::to_string(s.support) +

@@ -70,10 +70,14 @@ std::vector<PointD<D>> point_pool(Rng& rng, std::size_t m, int max_exp = 30, dou
     return pool;
 }
 
-/// Independent oracle: I(P) by brute force straight from the definition (spec §1.4, k = 1).
+/// Independent oracle: I(P) by brute force straight from the definition (spec §1.4; paper
+/// mode k = 1, rules C, A, B; mesh mode k = 2 and rules U, R as well).
 template <int D>
-std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoint>& pts) {
+std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoint>& pts,
+                                     QuadtreeMode mode = QuadtreeMode::Paper) {
     constexpr int K = Tree<D>::kLevels;
+    const bool mesh = mode == QuadtreeMode::Mesh;
+    const std::int64_t k = mesh ? 2 : 1;
     std::set<CellId<D>> in_i;
     for (int j = 0; j <= K; ++j) {
         for (const auto& p : pts) {
@@ -83,7 +87,7 @@ std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoi
                 for (int i = 0; i < D; ++i) {
                     const auto a = static_cast<std::int64_t>(p[i] >> j);
                     const auto b = static_cast<std::int64_t>(q[i] >> j);
-                    ok = ok && std::abs(a - b) <= 1;
+                    ok = ok && std::abs(a - b) <= k;
                 }
                 near += ok ? 1 : 0;
             }
@@ -94,10 +98,35 @@ std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoi
             }
         }
     }
+    if (mesh && !pts.empty()) in_i.insert({K, {}});  // rule R
     std::vector<CellId<D>> work(in_i.begin(), in_i.end());
     while (!work.empty()) {
         const CellId<D> x = work.back();
         work.pop_back();
+        const bool holds = std::any_of(pts.begin(), pts.end(), [&](const auto& p) {
+            for (int i = 0; i < D; ++i)
+                if ((p[i] >> x.level) != x.index[i]) return false;
+            return true;
+        });
+        if (mesh && holds) {  // rule U: every equal-size neighbour
+            const std::int64_t n = std::int64_t{1} << (K - x.level);
+            std::array<int, D> o;
+            o.fill(-1);
+            while (true) {
+                CellId<D> y{x.level, {}};
+                bool ok = true;
+                for (int i = 0; i < D && ok; ++i) {
+                    const std::int64_t b = static_cast<std::int64_t>(x.index[i]) + o[i];
+                    ok = b >= 0 && b < n;
+                    y.index[i] = static_cast<std::uint64_t>(b);
+                }
+                if (ok && in_i.insert(y).second) work.push_back(y);
+                int i = 0;
+                while (i < D && o[i] == 1) o[i++] = -1;
+                if (i == D) break;
+                ++o[i];
+            }
+        }
         if (x.level == K) continue;
         const std::int64_t n = std::int64_t{1} << (K - x.level - 1);
         // every cell of the next level whose closure meets x's closure
@@ -272,13 +301,15 @@ TEST(DynQuadtree, PaperFigure2OrderGivesTheCanonicalTree3D) { check_paper_oracle
 /// a shuffled re-insertion, a sorted re-insertion and build() of the final set (and, for small
 /// sets, with the brute-force oracle). Checks invariants after every operation if asked.
 template <int D>
-void run_history_independence(std::uint64_t seed, int sequences, bool check_every_op) {
+void run_history_independence(std::uint64_t seed, int sequences, bool check_every_op,
+                              QuadtreeMode mode = QuadtreeMode::Paper) {
     Rng rng(seed);
+    const QuadtreeOptions<D> options{.mode = mode};
     for (int s = 0; s < sequences; ++s) {
         const auto pool = D == 2 ? point_pool<D>(rng, 4 + rng.below(28), /*max_exp=*/24)
                                  : point_pool<D>(rng, 4 + rng.below(20), /*max_exp=*/12,
                                                  /*tiny=*/0.02);
-        Tree<D> tree;
+        Tree<D> tree(options);
         std::set<std::size_t> present;
         const std::size_t ops = 10 + rng.below(50);
         for (std::size_t k = 0; k < ops; ++k) {
@@ -304,13 +335,13 @@ void run_history_independence(std::uint64_t seed, int sequences, bool check_ever
         for (std::size_t i : present) final_set.push_back(pool[i]);
         const std::string dump = tree.canonical_dump();
 
-        const Tree<D> built = Tree<D>::build(final_set);
+        const Tree<D> built = Tree<D>::build(final_set, options);
         ASSERT_EQ(built.canonical_dump(), dump) << "seed " << seed << " seq " << s;
 
         auto shuffled = final_set;
         for (std::size_t i = shuffled.size(); i > 1; --i)
             std::swap(shuffled[i - 1], shuffled[rng.below(i)]);
-        Tree<D> again;
+        Tree<D> again(options);
         for (const auto& p : shuffled) ASSERT_EQ(again.insert(p), InsertResult::Inserted);
         ASSERT_EQ(again.canonical_dump(), dump) << "seed " << seed << " seq " << s;
 
@@ -322,14 +353,15 @@ void run_history_independence(std::uint64_t seed, int sequences, bool check_ever
             }
             return false;
         });
-        Tree<D> ordered;
+        Tree<D> ordered(options);
         for (const auto& p : sorted) ASSERT_EQ(ordered.insert(p), InsertResult::Inserted);
         ASSERT_EQ(ordered.canonical_dump(), dump) << "seed " << seed << " seq " << s;
 
         if (final_set.size() <= 24 && s % 4 == 0) {
             std::vector<typename Tree<D>::GridPoint> grid;
             for (const auto& p : final_set) grid.push_back(tree.grid_point(p));
-            ASSERT_EQ(tree.leaves(), oracle_leaves<D>(grid)) << "seed " << seed << " seq " << s;
+            ASSERT_EQ(tree.leaves(), oracle_leaves<D>(grid, mode))
+                << "seed " << seed << " seq " << s;
         }
         if (!check_every_op) {
             const auto bad = tree.check_invariants();
@@ -366,6 +398,40 @@ TEST(DynQuadtree, HistoryIndependence2D) { run_history_independence<2>(11, 1000,
 TEST(DynQuadtree, HistoryIndependence3D) { run_history_independence<3>(12, 300, false); }
 TEST(DynQuadtree, InvariantsAfterEveryOperation2D) { run_history_independence<2>(21, 80, true); }
 TEST(DynQuadtree, InvariantsAfterEveryOperation3D) { run_history_independence<3>(22, 15, true); }
+TEST(DynQuadtree, MeshModeHistoryIndependence2D) {
+    run_history_independence<2>(13, 600, false, QuadtreeMode::Mesh);
+}
+TEST(DynQuadtree, MeshModeHistoryIndependence3D) {
+    run_history_independence<3>(14, 120, false, QuadtreeMode::Mesh);
+}
+TEST(DynQuadtree, MeshModeInvariantsAfterEveryOperation2D) {
+    run_history_independence<2>(23, 60, true, QuadtreeMode::Mesh);
+}
+TEST(DynQuadtree, MeshModeInvariantsAfterEveryOperation3D) {
+    run_history_independence<3>(24, 10, true, QuadtreeMode::Mesh);
+}
+
+TEST(DynQuadtree, MeshModeRefinesThePaperTree) {
+    // Every paper rule is implied by a mesh rule, so I_paper(P) ⊆ I_mesh(P): every paper leaf
+    // is a union of mesh leaves.
+    Rng rng(41);
+    for (int s = 0; s < 50; ++s) {
+        const auto pool = point_pool<2>(rng, 2 + rng.below(40), 20);
+        const Tree<2> paper = Tree<2>::build(pool);
+        const Tree<2> mesh = Tree<2>::build(pool, {.mode = QuadtreeMode::Mesh});
+        for (const CellId<2>& c : mesh.leaves()) {
+            CellId<2> a = c;  // walk up until a paper leaf or internal cell
+            while (paper.cell_kind(a) == CellKind::Absent) {
+                ++a.level;
+                for (auto& v : a.index) v >>= 1;
+            }
+            EXPECT_EQ(paper.cell_kind(a), CellKind::Leaf)
+                << "mesh leaf (level " << c.level << ") is not inside a paper leaf";
+        }
+        EXPECT_GE(mesh.leaf_count(), paper.leaf_count());
+        EXPECT_TRUE(mesh.check_invariants().empty()) << joined(mesh.check_invariants());
+    }
+}
 
 template <int D>
 void check_bad_input_unchanged() {

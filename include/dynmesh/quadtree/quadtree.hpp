@@ -1,20 +1,24 @@
 #pragma once
 /// \file DynQuadtree<D>: a balanced 2^D-tree over a dynamic point set (D = 2, 3), after Acar &
 /// Hudson, "Dynamic Mesh Refinement with Quad Trees and Off-Centers" (CMU-CS-07-121), as
-/// specified in shared/specs/dynamic-quadtree.md §1–§3 ("paper mode": isolation radius k = 1).
+/// specified in shared/specs/dynamic-quadtree.md §1–§3, in two modes: "paper mode" (isolation
+/// radius k = 1, the paper's tree) and "mesh mode" (k = 2 plus rules U and R, the tree the
+/// simplicial meshes of quad_mesh.hpp / oct_mesh.hpp are derived from).
 ///
-/// The tree is a function of (domain, point set) alone (spec §1.4): its internal cells are the
-/// least set I(P) closed under
-///   (C) crowded(x) => x in I, where crowded(x) <=> |P ∩ x| >= 1 and |P ∩ N_1[x]| >= 2
-///       (N_1[x] = the 3^D block of equal-size cells centred on x, clipped to the domain);
+/// The tree is a function of (domain, point set, mode) alone (spec §1.4): its internal cells are
+/// the least set I(P) closed under
+///   (C) crowded_k(x) => x in I, where crowded_k(x) <=> |P ∩ x| >= 1 and |P ∩ N_k[x]| >= 2
+///       (N_k[x] = the (2k+1)^D block of equal-size cells centred on x, clipped to the domain);
 ///   (A) x in I => parent(x) in I;
-///   (B) x in I => every cell of size 2|x| touching x (closures meet) is in I.
+///   (B) x in I => every cell of size 2|x| touching x (closures meet) is in I;
+///   (U) mesh mode: x in I and P ∩ x nonempty => every equal-size neighbour of x is in I;
+///   (R) mesh mode: the root is in I whenever P is nonempty.
 /// Leaves are the children of I-cells not in I (or the root alone). Cells are half-open dyadic
 /// cubes on an integer grid of 2^52 units per axis; inputs are snapped to multiples of 8 units
 /// (input quantum W·2^-49) and must lie in the middle third of the domain box.
 ///
 /// Updates are incremental (spec §3.2, support counting): an insert or erase recomputes the
-/// crowding flags of the 3^D cells around the point per level, then settles membership in I
+/// crowding flags of the (2k+1)^D cells around the point per level, then settles membership in I
 /// smallest level first with a bucket queue, and finally splits / merges only the cells whose
 /// membership changed. The result equals build() on the current point set, cell for cell.
 
@@ -36,12 +40,26 @@ namespace dynmesh {
 template <int D>
 using PointD = std::conditional_t<D == 2, Vec2, Vec3>;
 
+/// Which tree of spec §1.4 is maintained.
+enum class QuadtreeMode {
+    Paper,  // isolation radius k = 1, rules C, A, B: the paper's balanced tree
+    Mesh,   // k = 2 and rules U, R as well: every leaf touching a point leaf has its size
+};
+
 /// The fixed domain box Ω = [origin, origin + width]^D. It never follows the points (spec §1.1);
 /// changing it means building a new tree.
 template <int D>
 struct QuadtreeOptions {
     PointD<D> origin{};  // lower corner of Ω
     double width = 1.0;  // side length W of Ω, finite and > 0
+    QuadtreeMode mode = QuadtreeMode::Paper;
+};
+
+/// What a cell is in the current tree.
+enum class CellKind {
+    Absent,    // not a cell of the tree: strictly inside a leaf
+    Leaf,
+    Internal,  // a member of I(P)
 };
 
 enum class InsertResult {
@@ -84,6 +102,12 @@ public:
     static constexpr int kLevels = 52;    // K: the grid has 2^K units per axis
     static constexpr int kGuardBits = 3;  // G: inputs are snapped to multiples of 2^G units
 
+    /// A stored point: its snapped grid coordinates and the coordinates it was given.
+    struct StoredPoint {
+        GridPoint grid{};
+        Point point{};
+    };
+
     /// An empty tree (the root alone) over the given domain.
     /// \throw InvalidInput if the origin is not finite or the width is not finite and > 0.
     explicit DynQuadtree(const QuadtreeOptions<D>& options = {});
@@ -115,8 +139,19 @@ public:
     /// \throw InvalidInput unless is_admissible(p).
     [[nodiscard]] GridPoint grid_point(const Point& p) const;
 
+    /// The isolation radius k of the mode (1 in paper mode, 2 in mesh mode).
+    [[nodiscard]] int isolation_radius() const {
+        return options_.mode == QuadtreeMode::Mesh ? 2 : 1;
+    }
+
     /// Every leaf, sorted by (level, index).
     [[nodiscard]] std::vector<CellId<D>> leaves() const;
+    /// Whether c is a leaf, an internal cell or not a cell of the tree. O(1) expected.
+    [[nodiscard]] CellKind cell_kind(const CellId<D>& c) const;
+    /// The points of leaf c (at most one in a settled tree); empty if c is not a leaf.
+    [[nodiscard]] std::span<const StoredPoint> leaf_points(const CellId<D>& c) const;
+    /// The leaf containing grid point g (g's coordinates in [0, 2^kLevels)). O(depth).
+    [[nodiscard]] CellId<D> leaf_containing(const GridPoint& g) const;
     /// Every stored point with its grid coordinates, sorted by grid coordinates (canonical
     /// order: independent of the history of updates).
     [[nodiscard]] std::vector<std::pair<GridPoint, Point>> points() const;
@@ -150,10 +185,7 @@ private:
             return static_cast<std::size_t>(h);
         }
     };
-    struct Entry {
-        GridPoint g{};
-        Point p{};
-    };
+    using Entry = StoredPoint;
     /// A cell of the tree (internal or leaf). Leaves own their points (≤ 1 when settled).
     struct Node {
         std::uint64_t count = 0;  // |P ∩ cell|
@@ -179,11 +211,14 @@ private:
     [[nodiscard]] const Node& find_leaf(const GridPoint& g) const;
     /// |P ∩ x| for any cell x (0 outside the domain), from stored counts or a leaf's points.
     [[nodiscard]] std::uint64_t count_in(const Key& x) const;
-    /// crowded_1(x) from current counts.
+    /// crowded_k(x) from current counts (k = isolation_radius()).
     [[nodiscard]] bool is_crowded(const Key& x) const;
-    /// Spec §3.2 steps 2–4 after p's counts and leaf entry were updated; sign = +1 or -1;
+    /// Spec §3.2 steps 1–4 after p's counts and leaf entry were updated; sign = +1 or -1;
     /// path = the root-to-leaf path of p (already updated counts).
     void propagate(const GridPoint& g, int sign, const std::vector<Node*>& path);
+    /// Mesh mode: +-1 support from x (an I-cell holding a point, rule U) to each equal-size
+    /// neighbour, which is queued in `bucket`.
+    void push_u_support(const Key& x, int delta, std::vector<Key>& bucket);
     void split(const Key& x);
     void merge(const Key& x);
 
