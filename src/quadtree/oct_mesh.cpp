@@ -9,167 +9,33 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "leaf_mesh.hpp"
 
 namespace dynmesh {
 
 namespace {
 
-constexpr int kLevels = DynQuadtree<3>::kLevels;
+using Lattice3 = detail::Lattice<3>;
+using Tri = std::array<Lattice3, 3>;
 
-std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
-
-/// A dyadic cell: ∏_i [a_i·2^level, (a_i+1)·2^level).
-struct Cell {
-    int level = 0;
-    std::array<std::uint64_t, 3> a{};
-    auto operator<=>(const Cell&) const = default;
-};
-struct CellHash {
-    std::size_t operator()(const Cell& c) const noexcept {
-        std::uint64_t h = mix(static_cast<std::uint64_t>(c.level));
-        for (std::uint64_t v : c.a) h = mix(h ^ v);
-        return static_cast<std::size_t>(h);
-    }
-};
-/// A lattice point in grid units (coordinates in [0, 2^52]).
-using Lattice = std::array<std::uint64_t, 3>;
-struct LatticeHash {
-    std::size_t operator()(const Lattice& v) const noexcept {
-        return static_cast<std::size_t>(mix(mix(mix(v[0]) ^ v[1]) ^ v[2]));
-    }
-};
-
-using CellSet = std::unordered_set<Cell, CellHash>;
-using LatticeSet = std::unordered_set<Lattice, LatticeHash>;
-using GridPoint = DynQuadtree<3>::GridPoint;
-
-Cell cell_of(const GridPoint& g, int level) {
-    return {level, {g[0] >> level, g[1] >> level, g[2] >> level}};
-}
-
-/// Number of cells per axis at `level`.
-std::int64_t cells_per_axis(int level) { return std::int64_t{1} << (kLevels - level); }
-
-/// The mesh-mode tree (spec §1.4, k = 2, rules C, A, B, U, R) of the tree's point set,
-/// seeded with the tree's own internal cells (paper-mode I(P) ⊆ mesh-mode I(P)).
-class MeshModeRefiner {
+/// Triangulates the faces of one leaf (spec §4.3) from its code.
+class FaceTriangulator {
 public:
-    explicit MeshModeRefiner(const DynQuadtree<3>& tree) : points_(tree.points()) {
-        count_.reserve(points_.size() * (kLevels + 1));
-        in_i_.reserve(2 * tree.leaf_count());
-        for (const auto& [g, p] : points_)
-            for (int j = 0; j <= kLevels; ++j) ++count_[cell_of(g, j)];
-        for (const CellId<3>& leaf : tree.leaves())
-            if (leaf.level < kLevels)
-                add({leaf.level + 1, {leaf.index[0] >> 1, leaf.index[1] >> 1, leaf.index[2] >> 1}});
-        if (!points_.empty()) add({kLevels, {0, 0, 0}});  // rule R
-        for (const auto& [g, p] : points_) {
-            // crowded_2 is monotone upwards along p's ancestors: find the lowest crowded one.
-            int lo = 0, hi = kLevels + 1;  // answer in [lo, hi); hi = none
-            while (lo < hi) {
-                const int mid = (lo + hi) / 2;
-                if (block_count(cell_of(g, mid)) >= 2)
-                    hi = mid;
-                else
-                    lo = mid + 1;
-            }
-            if (lo <= kLevels) add(cell_of(g, lo));  // rule C
-        }
-        close();
-    }
-
-    [[nodiscard]] const CellSet& internal() const { return in_i_; }
-    [[nodiscard]] const std::vector<std::pair<GridPoint, Vec3>>& points() const { return points_; }
-
-private:
-    [[nodiscard]] std::uint64_t count(const Cell& c) const {
-        const auto it = count_.find(c);
-        return it == count_.end() ? 0 : it->second;
-    }
-    /// Calls f(cell) for every cell of x's level with index in [x.a - r, x.a + r] per axis
-    /// (clipped to the domain).
-    template <class F>
-    static void for_block(const Cell& x, std::int64_t r, F&& f) {
-        const std::int64_t n = cells_per_axis(x.level);
-        const auto ix = static_cast<std::int64_t>(x.a[0]), iy = static_cast<std::int64_t>(x.a[1]),
-                   iz = static_cast<std::int64_t>(x.a[2]);
-        for (std::int64_t i = std::max<std::int64_t>(ix - r, 0); i <= std::min(ix + r, n - 1); ++i)
-            for (std::int64_t j = std::max<std::int64_t>(iy - r, 0); j <= std::min(iy + r, n - 1);
-                 ++j)
-                for (std::int64_t k = std::max<std::int64_t>(iz - r, 0);
-                     k <= std::min(iz + r, n - 1); ++k)
-                    f(Cell{x.level,
-                           {static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j),
-                            static_cast<std::uint64_t>(k)}});
-    }
-    /// |P ∩ N_2[x]| (the 5×5×5 block of equal-size cells centred on x, clipped to the domain).
-    [[nodiscard]] std::uint64_t block_count(const Cell& x) const {
-        std::uint64_t total = 0;
-        for_block(x, 2, [&](const Cell& y) { total += count(y); });
-        return total;
-    }
-    void add(const Cell& c) {
-        if (in_i_.insert(c).second) work_.push_back(c);
-    }
-    /// Closes I under A (parent), B (2:1 corner balance) and U (equal-size neighbours of a
-    /// point-holding cell).
-    void close() {
-        while (!work_.empty()) {
-            const Cell x = work_.back();
-            work_.pop_back();
-            if (x.level < kLevels) {
-                // Cells of size 2|x| whose closures meet x: indices (a-1..a+1) >> 1 per axis
-                // (the parent is among them: rule A).
-                const int up = x.level + 1;
-                const std::int64_t n = cells_per_axis(up);
-                std::array<std::int64_t, 3> lo{}, hi{};
-                for (std::size_t d = 0; d < 3; ++d) {
-                    const auto a = static_cast<std::int64_t>(x.a[d]);
-                    lo[d] = std::max<std::int64_t>(a - 1, 0) >> 1;
-                    hi[d] = std::min((a + 1) >> 1, n - 1);
-                }
-                for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
-                    for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-                        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
-                            add({up,
-                                 {static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j),
-                                  static_cast<std::uint64_t>(k)}});
-            }
-            if (count(x) > 0) for_block(x, 1, [&](const Cell& y) { add(y); });  // rule U
-        }
-    }
-
-    std::vector<std::pair<GridPoint, Vec3>> points_;
-    std::unordered_map<Cell, std::uint64_t, CellHash> count_;
-    CellSet in_i_;
-    std::vector<Cell> work_;
-};
-
-using Tri = std::array<Lattice, 3>;
-
-/// Triangulates and cones the leaves (spec §4.3, §4.4) over lattice keys.
-class Triangulator {
-public:
-    explicit Triangulator(const LatticeSet& corners) : corners_(corners) {}
+    FaceTriangulator(const CellId<3>& leaf, detail::LeafCode code) : leaf_(leaf), code_(code) {}
 
     /// The facet triangles of face (axis, side) of the cell with lower corner x and size s.
-    void face_triangles(const Lattice& x, std::uint64_t s, std::size_t axis, int side,
+    void face_triangles(const Lattice3& x, std::uint64_t s, std::size_t axis, int side,
                         std::vector<Tri>& out) const {
-        Lattice lo = x;
+        Lattice3 lo = x;
         lo[axis] += side == 1 ? s : 0;
         const std::size_t b = (axis + 1) % 3, c = (axis + 2) % 3;
         const std::uint64_t h = s / 2;
-        Lattice centre = lo;
+        Lattice3 centre = lo;
         centre[b] += h;
         centre[c] += h;
-        if (s >= 2 && corners_.contains(centre)) {  // the leaf across is smaller
+        if (s >= 2 && has_vertex(centre)) {  // the leaf across is smaller
             for (int q = 0; q < 4; ++q) {
-                Lattice sub = lo;
+                Lattice3 sub = lo;
                 sub[b] += (q & 1) ? h : 0;
                 sub[c] += (q & 2) ? h : 0;
                 square_triangles(sub, h, b, c, out);
@@ -180,23 +46,27 @@ public:
     }
 
 private:
+    [[nodiscard]] bool has_vertex(const Lattice3& v) const {
+        return detail::code_has_vertex<3>(leaf_, code_, v);
+    }
+
     /// One facet: the square with lower corner lo and side s spanning axes b and c.
-    void square_triangles(const Lattice& lo, std::uint64_t s, std::size_t b, std::size_t c,
+    void square_triangles(const Lattice3& lo, std::uint64_t s, std::size_t b, std::size_t c,
                           std::vector<Tri>& out) const {
         const auto at = [&](std::uint64_t db, std::uint64_t dc) {
-            Lattice p = lo;
+            Lattice3 p = lo;
             p[b] += db;
             p[c] += dc;
             return p;
         };
         const std::uint64_t h = s / 2;
         const bool even = s >= 2 && s % 2 == 0;
-        std::array<Lattice, 8> cycle{};
+        std::array<Lattice3, 8> cycle{};
         std::size_t m = 0;
         bool hanging = false;
-        const auto push_side = [&](const Lattice& corner, const Lattice& mid) {
+        const auto push_side = [&](const Lattice3& corner, const Lattice3& mid) {
             cycle[m++] = corner;
-            if (even && corners_.contains(mid)) {
+            if (even && has_vertex(mid)) {
                 cycle[m++] = mid;
                 hanging = true;
             }
@@ -211,11 +81,12 @@ private:
             out.push_back({cycle[0], cycle[2], cycle[3]});
             return;
         }
-        const Lattice centre = at(h, h);
+        const Lattice3 centre = at(h, h);
         for (std::size_t k = 0; k < m; ++k) out.push_back({centre, cycle[k], cycle[(k + 1) % m]});
     }
 
-    const LatticeSet& corners_;
+    CellId<3> leaf_;
+    detail::LeafCode code_;
 };
 
 /// 6·signed volume of (a, b, c, d), in long double.
@@ -231,129 +102,47 @@ long double six_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
 
 }  // namespace
 
-OctMesh3 oct_mesh(const DynQuadtree<3>& tree) {
-    const MeshModeRefiner refiner(tree);
-    const CellSet& in_i = refiner.internal();
+namespace detail {
 
-    // Leaves: children of I-cells that are not in I (or the root alone).
-    std::vector<Cell> leaves;
-    for (const Cell& x : in_i) {
-        if (x.level == 0) throw InternalError("oct_mesh: a cell of size 1 grid unit was split");
-        for (std::uint64_t k = 0; k < 8; ++k) {
-            const Cell ch{x.level - 1,
-                          {2 * x.a[0] + (k & 1), 2 * x.a[1] + ((k >> 1) & 1), 2 * x.a[2] + (k >> 2)}};
-            if (!in_i.contains(ch)) leaves.push_back(ch);
+template <>
+void leaf_simplices<3>(const CellId<3>& leaf, LeafCode code,
+                       std::vector<LatticeSimplex<3>>& out) {
+    const auto [x, s] = cell_box(leaf);
+    // Star cells are coned from the warped corner v, every other leaf from its centre.
+    const bool is_star = code_is_star<3>(code);
+    const Lattice3 apex =
+        is_star ? code_apex<3>(leaf, code) : Lattice3{x[0] + s / 2, x[1] + s / 2, x[2] + s / 2};
+    const FaceTriangulator faces(leaf, code);
+    static thread_local std::vector<Tri> facets;
+    facets.clear();
+    for (std::size_t axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            // A star cell's faces through v are interior to the star: skip them.
+            if (is_star && apex[axis] == x[axis] + (side == 1 ? s : 0)) continue;
+            faces.face_triangles(x, s, axis, side, facets);
         }
-    }
-    if (in_i.empty()) leaves.push_back({kLevels, {0, 0, 0}});
-    std::sort(leaves.begin(), leaves.end());
-    const CellSet leaf_set(leaves.begin(), leaves.end());
+    for (const Tri& t : facets) out.push_back({apex, t[0], t[1], t[2]});
+}
 
-    LatticeSet corners;
-    corners.reserve(4 * leaves.size());
-    for (const Cell& c : leaves) {
-        const std::uint64_t s = std::uint64_t{1} << c.level;
-        for (std::uint64_t k = 0; k < 8; ++k)
-            corners.insert({c.a[0] * s + ((k & 1) ? s : 0), c.a[1] * s + (((k >> 1) & 1) ? s : 0),
-                            c.a[2] * s + ((k >> 2) ? s : 0)});
-    }
-
-    // Warping (§4.2) and stars (§4.1): star cell -> its warped corner.
-    std::unordered_map<Cell, Lattice, CellHash> stars;
-    std::unordered_map<Lattice, std::size_t, LatticeHash> warped;  // lattice key -> point index
-    const auto& pts = refiner.points();
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        const auto& g = pts[i].first;
-        Cell c{};
-        bool found = false;
-        for (int j = 0; j <= kLevels && !found; ++j) {
-            c = cell_of(g, j);
-            found = leaf_set.contains(c);
-        }
-        if (!found) throw InternalError("oct_mesh: point without a leaf");
-        const std::uint64_t s = std::uint64_t{1} << c.level;
-        Lattice v{};
-        for (std::size_t d = 0; d < 3; ++d) {
-            const std::uint64_t a = c.a[d] * s;
-            v[d] = g[d] - a >= s / 2 ? a + s : a;
-        }
-        if (!warped.emplace(v, i).second)
-            throw InternalError("oct_mesh: two points warp to one corner");
-        for (std::uint64_t k = 0; k < 8; ++k) {
-            Cell sc{c.level, {}};
-            for (std::size_t d = 0; d < 3; ++d) {
-                const std::uint64_t lo = ((k >> d) & 1) ? v[d] : v[d] - s;
-                sc.a[d] = lo >> c.level;
-            }
-            if (!leaf_set.contains(sc))
-                throw InternalError(
-                    "oct_mesh: star lemma violated (a star cell is not a leaf of the point "
-                    "leaf's size)");
-            if (!stars.emplace(sc, v).second)
-                throw InternalError("oct_mesh: two stars share a cell");
-        }
-    }
-
-    // Tetrahedra over lattice keys: (apex, facet triangle), oriented later.
-    const Triangulator triangulator(corners);
-    std::vector<std::array<Lattice, 4>> cones;
-    cones.reserve(24 * leaves.size());
-    std::vector<Tri> facets;
-    for (const Cell& c : leaves) {
-        const std::uint64_t s = std::uint64_t{1} << c.level;
-        const Lattice x{c.a[0] * s, c.a[1] * s, c.a[2] * s};
-        const auto star = stars.find(c);
-        const bool is_star = star != stars.end();
-        const Lattice apex = is_star ? star->second : Lattice{x[0] + s / 2, x[1] + s / 2, x[2] + s / 2};
-        facets.clear();
-        for (std::size_t axis = 0; axis < 3; ++axis)
-            for (int side = 0; side < 2; ++side) {
-                // A star cell's faces through v are interior to the star: skip them.
-                if (is_star && apex[axis] == x[axis] + (side == 1 ? s : 0)) continue;
-                triangulator.face_triangles(x, s, axis, side, facets);
-            }
-        for (const Tri& t : facets) cones.push_back({apex, t[0], t[1], t[2]});
-    }
-
-    // Vertices sorted by lattice key.
-    std::unordered_map<Lattice, std::uint32_t, LatticeHash> index_of;
-    index_of.reserve(cones.size() / 2);
-    for (const auto& t : cones)
-        for (const Lattice& k : t) index_of.emplace(k, 0);
-    std::vector<Lattice> keys;
-    keys.reserve(index_of.size());
-    for (const auto& [k, i] : index_of) keys.push_back(k);
-    std::sort(keys.begin(), keys.end());
-    for (std::size_t i = 0; i < keys.size(); ++i)
-        index_of[keys[i]] = static_cast<std::uint32_t>(i);
-
+OctMesh3 mesh_from_leaves(const DynQuadtree<3>& tree,
+                          std::span<const std::pair<CellId<3>, LeafCode>> leaves) {
+    AssembledMesh<3> a = assemble<3>(tree, leaves);
     OctMesh3 mesh;
     mesh.origin = tree.options().origin;
     mesh.width = tree.options().width;
     mesh.leaves = leaves.size();
-    const double unit = mesh.width * 0x1p-52;  // exact: a power-of-two scaling
-    const auto index = [&index_of](const Lattice& k) { return index_of.at(k); };
-    mesh.points.reserve(keys.size());
-    for (const Lattice& k : keys) {
-        if (const auto w = warped.find(k); w != warped.end())
-            mesh.points.push_back(pts[w->second].second);
-        else
-            mesh.points.push_back({mesh.origin.x + static_cast<double>(k[0]) * unit,
-                                   mesh.origin.y + static_cast<double>(k[1]) * unit,
-                                   mesh.origin.z + static_cast<double>(k[2]) * unit});
-    }
-    mesh.tets.reserve(cones.size());
-    for (const auto& t : cones) {
-        std::array<std::uint32_t, 4> tet{index(t[0]), index(t[1]), index(t[2]), index(t[3])};
-        const Sign o = orient3d(mesh.points[tet[0]], mesh.points[tet[1]], mesh.points[tet[2]],
-                                mesh.points[tet[3]]);
-        if (o == Sign::Zero) throw InternalError("oct_mesh: a flat tetrahedron");
-        if (o == Sign::Negative) std::swap(tet[2], tet[3]);
-        mesh.tets.push_back(tet);
-    }
-    mesh.input_vertices.resize(pts.size());
-    for (const auto& [k, i] : warped) mesh.input_vertices[i] = index(k);
+    mesh.points = std::move(a.points);
+    mesh.tets = std::move(a.simplices);
+    mesh.input_vertices = std::move(a.input_vertices);
     return mesh;
+}
+
+}  // namespace detail
+
+OctMesh3 oct_mesh(const DynQuadtree<3>& tree) {
+    DynQuadtree<3> storage;
+    const DynQuadtree<3>& mt = detail::mesh_mode_tree(tree, storage);
+    return detail::mesh_from_leaves(mt, detail::coded_leaves(mt));
 }
 
 std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {

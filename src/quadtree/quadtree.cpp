@@ -592,18 +592,11 @@ std::vector<CellId<D>> DynQuadtree<D>::leaves() const {
 }
 
 template <int D>
-CellKind DynQuadtree<D>::cell_kind(const CellId<D>& c) const {
+typename DynQuadtree<D>::CellView DynQuadtree<D>::cell_view(const CellId<D>& c) const {
     const auto it = nodes_.find(Key{c.index, c.level});
-    if (it == nodes_.end()) return CellKind::Absent;
-    return it->second.is_leaf ? CellKind::Leaf : CellKind::Internal;
-}
-
-template <int D>
-std::span<const typename DynQuadtree<D>::StoredPoint> DynQuadtree<D>::leaf_points(
-    const CellId<D>& c) const {
-    const auto it = nodes_.find(Key{c.index, c.level});
-    if (it == nodes_.end() || !it->second.is_leaf) return {};
-    return it->second.points;
+    if (it == nodes_.end()) return {};
+    if (!it->second.is_leaf) return {CellKind::Internal, {}};
+    return {CellKind::Leaf, it->second.points};
 }
 
 template <int D>

@@ -146,10 +146,19 @@ public:
 
     /// Every leaf, sorted by (level, index).
     [[nodiscard]] std::vector<CellId<D>> leaves() const;
+    /// What a cell is, and its points when it is a leaf.
+    struct CellView {
+        CellKind kind = CellKind::Absent;
+        std::span<const StoredPoint> points;  // leaves only
+    };
+    /// One lookup: the kind of c and, for a leaf, its points. O(1) expected.
+    [[nodiscard]] CellView cell_view(const CellId<D>& c) const;
     /// Whether c is a leaf, an internal cell or not a cell of the tree. O(1) expected.
-    [[nodiscard]] CellKind cell_kind(const CellId<D>& c) const;
+    [[nodiscard]] CellKind cell_kind(const CellId<D>& c) const { return cell_view(c).kind; }
     /// The points of leaf c (at most one in a settled tree); empty if c is not a leaf.
-    [[nodiscard]] std::span<const StoredPoint> leaf_points(const CellId<D>& c) const;
+    [[nodiscard]] std::span<const StoredPoint> leaf_points(const CellId<D>& c) const {
+        return cell_view(c).points;
+    }
     /// The leaf containing grid point g (g's coordinates in [0, 2^kLevels)). O(depth).
     [[nodiscard]] CellId<D> leaf_containing(const GridPoint& g) const;
     /// Every stored point with its grid coordinates, sorted by grid coordinates (canonical
@@ -170,7 +179,12 @@ private:
     struct Key {
         std::array<std::uint64_t, D> a{};
         int level = 0;
-        bool operator==(const Key&) const = default;
+        bool operator==(const Key& o) const {
+            if (level != o.level) return false;
+            for (int i = 0; i < D; ++i)
+                if (a[i] != o.a[i]) return false;
+            return true;
+        }
     };
     struct KeyHash {
         static constexpr std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser

@@ -1,0 +1,190 @@
+#include "dynmesh/quadtree/dyn_mesh.hpp"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
+#include "quadtree_fixtures.hpp"
+
+namespace dynmesh {
+namespace {
+using namespace testing_quadtree;
+
+/// The simplex list of a mesh of either dimension.
+const auto& simplices_of(const QuadMesh2& m) { return m.triangles; }
+const auto& simplices_of(const OctMesh3& m) { return m.tets; }
+
+SimplexMeshD<2> static_mesh(const DynQuadtree<2>& t) { return quad_mesh(t); }
+SimplexMeshD<3> static_mesh(const DynQuadtree<3>& t) { return oct_mesh(t); }
+std::vector<std::string> check_mesh(const QuadMesh2& m) { return check_quad_mesh(m); }
+std::vector<std::string> check_mesh(const OctMesh3& m) { return check_oct_mesh(m); }
+
+/// Field-by-field equality (the canonical output files are a function of these).
+template <class M>
+void expect_same_mesh(const M& a, const M& b, const std::string& what) {
+    ASSERT_EQ(a.points.size(), b.points.size()) << what;
+    EXPECT_EQ(a.points, b.points) << what;
+    EXPECT_EQ(simplices_of(a), simplices_of(b)) << what;
+    EXPECT_EQ(a.input_vertices, b.input_vertices) << what;
+    EXPECT_EQ(a.leaves, b.leaves) << what;
+}
+
+/// Random insert/erase sequences. After every `every`-th operation: the dynamic mesh equals
+/// the from-scratch mesh of the current point set (paper-mode tree → quad_mesh / oct_mesh,
+/// an independent path through DynQuadtree::build), its invariants hold, the maintained
+/// simplex count and the report's delta are right, and the mesh is valid.
+template <int D>
+void run_sequences(std::uint64_t seed, int sequences, int every) {
+    Rng rng(seed);
+    for (int s = 0; s < sequences; ++s) {
+        const auto pool = D == 2 ? point_pool<D>(rng, 4 + rng.below(40), /*max_exp=*/24)
+                                 : point_pool<D>(rng, 3 + rng.below(10), /*max_exp=*/10,
+                                                 /*tiny=*/0.0);
+        DynQuadMesh<D> dm;
+        std::set<std::size_t> present;
+        const std::size_t ops = 10 + rng.below(40);
+        for (std::size_t k = 0; k < ops; ++k) {
+            const std::size_t i = rng.below(pool.size());
+            const std::size_t before = dm.simplex_count();
+            if (rng.coin(0.65)) {
+                const InsertResult r = dm.insert(pool[i]);
+                ASSERT_EQ(r,
+                          present.contains(i) ? InsertResult::Duplicate : InsertResult::Inserted);
+                if (r != InsertResult::Inserted) continue;
+                present.insert(i);
+            } else {
+                const EraseResult r = dm.erase(pool[i]);
+                ASSERT_EQ(r, present.contains(i) ? EraseResult::Erased : EraseResult::NotFound);
+                if (r != EraseResult::Erased) continue;
+                present.erase(i);
+            }
+            const auto& rep = dm.last_update();
+            ASSERT_EQ(dm.simplex_count() + rep.simplices_removed,
+                      before + rep.simplices_added);
+            if (k % static_cast<std::size_t>(every) != 0 && k + 1 != ops) continue;
+            const std::string what = "seed " + std::to_string(seed) + " seq " +
+                                     std::to_string(s) + " op " + std::to_string(k);
+            const auto bad = dm.check_invariants();
+            ASSERT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
+            std::vector<PointD<D>> current;
+            for (std::size_t j : present) current.push_back(pool[j]);
+            const auto want = static_mesh(DynQuadtree<D>::build(current));
+            const auto got = dm.mesh();
+            expect_same_mesh(got, want, what);
+            ASSERT_EQ(simplices_of(got).size(), dm.simplex_count()) << what;
+            const auto invalid = check_mesh(got);
+            ASSERT_TRUE(invalid.empty()) << what << ":\n" << joined(invalid);
+        }
+    }
+}
+
+TEST(DynQuadMesh, MatchesFromScratchAfterEveryUpdate2D) { run_sequences<2>(51, 80, 1); }
+TEST(DynQuadMesh, MatchesFromScratchAfterEveryUpdate3D) { run_sequences<3>(52, 6, 1); }
+TEST(DynQuadMesh, MatchesFromScratchManySequences2D) { run_sequences<2>(53, 500, 8); }
+TEST(DynQuadMesh, MatchesFromScratchManySequences3D) { run_sequences<3>(54, 50, 10); }
+
+TEST(DynQuadMesh, EmptyMeshCoversTheDomain) {
+    const DynQuadMesh<2> m2;
+    EXPECT_EQ(m2.simplex_count(), 2u);
+    EXPECT_TRUE(check_quad_mesh(m2.mesh()).empty());
+    const DynQuadMesh<3> m3;
+    EXPECT_EQ(m3.simplex_count(), 12u);  // the root cube: 6 faces × 2 triangles, coned
+    EXPECT_TRUE(check_oct_mesh(m3.mesh()).empty());
+}
+
+TEST(DynQuadMesh, InsertThenEraseRestoresTheMesh) {
+    Rng rng(61);
+    const auto pool = point_pool<2>(rng, 300, 30);
+    const std::vector<Vec2> base(pool.begin(), pool.begin() + 250);
+    DynQuadMesh<2> dm = DynQuadMesh<2>::build(base);
+    const QuadMesh2 before = dm.mesh();
+    const std::size_t count = dm.simplex_count();
+    for (std::size_t i = 250; i < pool.size(); ++i) {
+        ASSERT_EQ(dm.insert(pool[i]), InsertResult::Inserted);
+        const std::size_t added = dm.last_update().simplices_added;
+        const std::size_t removed = dm.last_update().simplices_removed;
+        ASSERT_EQ(dm.erase(pool[i]), EraseResult::Erased);
+        // The erase undoes exactly what the insert did.
+        EXPECT_EQ(dm.last_update().simplices_added, removed);
+        EXPECT_EQ(dm.last_update().simplices_removed, added);
+        ASSERT_EQ(dm.simplex_count(), count);
+    }
+    expect_same_mesh(dm.mesh(), before, "after insert/erase pairs");
+    EXPECT_TRUE(dm.check_invariants().empty());
+}
+
+TEST(DynQuadMesh, UpdatesAreLocal) {
+    // On 4000 uniform points one update recomputes a bounded number of leaves: at most
+    // 16 + 9 cells per changed cell (spec §4.6), far below the mesh size.
+    Rng rng(62);
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 4000; ++i)
+        pts.push_back({rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)});
+    DynQuadMesh<2> dm = DynQuadMesh<2>::build(pts);
+    const std::size_t total = dm.simplex_count();
+    for (int k = 0; k < 200; ++k) {
+        const Vec2 p{rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)};
+        ASSERT_EQ(dm.insert(p), InsertResult::Inserted);
+        const auto& rep = dm.last_update();
+        const std::size_t changed = rep.tree.split.size() + rep.tree.merged.size() + 1;
+        EXPECT_LE(rep.leaves_examined, 25 * changed);
+        EXPECT_LT(rep.simplices_added + rep.simplices_removed, total / 20);
+        EXPECT_GT(rep.simplices_added, 0u);  // the new point is a vertex: its star changed
+        ASSERT_EQ(dm.erase(p), EraseResult::Erased);
+    }
+    EXPECT_TRUE(dm.check_invariants().empty());
+}
+
+template <int D>
+void check_bad_input() {
+    Rng rng(63);
+    const auto pool = point_pool<D>(rng, 12, 12);
+    DynQuadMesh<D> dm = DynQuadMesh<D>::build(pool);
+    const auto before = dm.mesh();
+    const std::size_t count = dm.simplex_count();
+    PointD<D> nan = pool[0];
+    nan[0] = std::numeric_limits<double>::quiet_NaN();
+    PointD<D> outside = pool[0];
+    outside[0] = 0.9;
+    EXPECT_EQ(dm.insert(pool[3]), InsertResult::Duplicate);
+    EXPECT_EQ(dm.insert(nan), InsertResult::NotFinite);
+    EXPECT_EQ(dm.insert(outside), InsertResult::OutsideDomain);
+    EXPECT_EQ(dm.erase(outside), EraseResult::NotFound);
+    EXPECT_EQ(dm.erase(nan), EraseResult::NotFound);
+    PointD<D> absent = pool[0];
+    absent[0] += 1e-3;
+    if (!dm.tree().contains(absent)) EXPECT_EQ(dm.erase(absent), EraseResult::NotFound);
+    EXPECT_EQ(dm.simplex_count(), count);
+    expect_same_mesh(dm.mesh(), before, "after rejected updates");
+    EXPECT_TRUE(dm.check_invariants().empty());
+    std::vector<PointD<D>> dup = pool;
+    dup.push_back(pool[5]);
+    EXPECT_THROW((void)DynQuadMesh<D>::build(dup), InvalidInput);
+}
+TEST(DynQuadMesh, BadInputLeavesStateUnchanged2D) { check_bad_input<2>(); }
+TEST(DynQuadMesh, BadInputLeavesStateUnchanged3D) { check_bad_input<3>(); }
+
+TEST(DynQuadMesh, CustomDomain) {
+    const QuadtreeOptions<2> domain{.origin = {-3.0, 10.0}, .width = 6.0};
+    DynQuadMesh<2> dm(domain);
+    Rng rng(64);
+    for (int i = 0; i < 50; ++i)
+        ASSERT_EQ(dm.insert({rng.uniform(-1.0, 1.0), rng.uniform(12.0, 14.0)}),
+                  InsertResult::Inserted);
+    EXPECT_EQ(dm.tree().options().mode, QuadtreeMode::Mesh);
+    const QuadMesh2 m = dm.mesh();
+    EXPECT_EQ(m.origin.x, -3.0);
+    EXPECT_TRUE(check_quad_mesh(m).empty());
+    const AngleRangeDeg a = angle_range_deg(m);
+    EXPECT_GE(a.min, kQuadMeshMinAngleDeg - 1e-6);
+    EXPECT_LE(a.max, kQuadMeshMaxAngleDeg + 1e-6);
+}
+
+}  // namespace
+}  // namespace dynmesh
