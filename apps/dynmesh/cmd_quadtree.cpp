@@ -28,6 +28,7 @@
 #include "dynmesh/io/point_set_io.hpp"
 #include "dynmesh/io/simplex_mesh_io.hpp"
 #include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/oct_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quad_mesh.hpp"
@@ -293,21 +294,16 @@ struct MeshResult {
     nlohmann::json extra = nlohmann::json::object();
 };
 
-MeshResult mesh_tree(const DynQuadtree<2>& tree, const QuadtreeArgs& a, bool offcenter) {
+/// The 2D mesh: the maintained quadtree mesh, or (oc given) the off-center mesh.
+MeshResult describe_mesh(QuadMesh2 mesh, const std::optional<OffCenterMesh2>& oc,
+                         const QuadtreeArgs& a) {
     MeshResult r;
-    QuadMesh2 mesh;
-    std::optional<OffCenterMesh2> oc;
-    if (offcenter) {
-        OffCenterOptions oo;
-        oo.rho = a.rho;
-        oc = offcenter_mesh(tree, oo);
+    if (oc) {
         mesh.origin = oc->origin;
         mesh.width = oc->width;
         mesh.points = oc->points;
         mesh.triangles = oc->triangles;
         mesh.input_vertices = oc->input_vertices;
-    } else {
-        mesh = quad_mesh(tree);
     }
     const AngleRangeDeg angles = angle_range_deg(mesh);
     r.min_angle = angles.min;
@@ -342,9 +338,9 @@ MeshResult mesh_tree(const DynQuadtree<2>& tree, const QuadtreeArgs& a, bool off
     return r;
 }
 
-MeshResult mesh_tree(const DynQuadtree<3>& tree, const QuadtreeArgs& a, bool /*offcenter*/) {
+MeshResult describe_mesh(OctMesh3 mesh, const std::optional<OffCenterMesh2>& /*oc*/,
+                         const QuadtreeArgs& a) {
     MeshResult r;
-    OctMesh3 mesh = oct_mesh(tree);
     const DihedralRangeDeg d = dihedral_range_deg(mesh);
     r.min_angle = d.min;
     r.max_angle = d.max;
@@ -409,11 +405,21 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
         }
     }
 
-    progress.stage(std::string("building the ") + tree_name);
+    // The quadtree mesher maintains its mesh through the updates (DynQuadMesh); the off-center
+    // mesher refines the final point set of a paper-mode tree.
+    std::optional<DynQuadMesh<D>> dyn;
+    std::optional<DynQuadtree<D>> paper;
+    progress.stage(std::string("building the ") + tree_name + (offcenter ? "" : " and its mesh"));
     auto t0 = std::chrono::steady_clock::now();
-    DynQuadtree<D> tree = DynQuadtree<D>::build(pts, domain);
+    if (offcenter)
+        paper.emplace(DynQuadtree<D>::build(pts, domain));
+    else
+        dyn.emplace(DynQuadMesh<D>::build(pts, domain));
     const double seconds_build = seconds_since(t0);
+    const DynQuadtree<D>& tree = dyn ? dyn->tree() : *paper;
     if (std::string e = tree_underflow(tree); !e.empty()) throw InvalidInput(a.points + ": " + e);
+    const auto insert = [&](const PointD<D>& p) { return dyn ? dyn->insert(p) : paper->insert(p); };
+    const auto erase = [&](const PointD<D>& p) { return dyn ? dyn->erase(p) : paper->erase(p); };
 
     progress.stage("applying " + std::to_string(ops.size()) + " updates");
     nlohmann::json op_times = nlohmann::json::array();
@@ -422,7 +428,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
         const std::string where = a.ops + ":" + std::to_string(op.line) + ": ";
         t0 = std::chrono::steady_clock::now();
         if (op.insert) {
-            switch (tree.insert(op.p)) {
+            switch (insert(op.p)) {
                 case InsertResult::Inserted:
                     break;
                 case InsertResult::Duplicate:
@@ -435,23 +441,40 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
                 case InsertResult::NotFinite:
                     throw InvalidInput(where + "inserting a non-finite point");
             }
-        } else if (tree.erase(op.p) != EraseResult::Erased) {
+        } else if (erase(op.p) != EraseResult::Erased) {
             throw InvalidInput(where + "erasing " + fmt_point<D>(op.p) + ": no such point");
         }
         const double secs = seconds_since(t0);
         if (op.insert) {
             if (std::string e = update_underflow(tree); !e.empty()) {
-                (void)tree.erase(op.p);  // leave the state as it was before the op
+                (void)erase(op.p);  // leave the state as it was before the op
                 throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) + ": " + e);
             }
         }
         seconds_ops += secs;
-        op_times.push_back({{"op", op.insert ? "+" : "-"}, {"seconds", secs}});
+        nlohmann::json entry = {{"op", op.insert ? "+" : "-"},
+                                {"seconds", secs},
+                                {"cells_split", tree.last_update().split.size()},
+                                {"cells_merged", tree.last_update().merged.size()}};
+        if (dyn) {
+            const MeshUpdateReport<D>& u = dyn->last_update();
+            entry["leaves_examined"] = u.leaves_examined;
+            entry["simplices_removed"] = u.simplices_removed;
+            entry["simplices_added"] = u.simplices_added;
+        }
+        op_times.push_back(std::move(entry));
     }
 
     progress.stage("meshing");
     t0 = std::chrono::steady_clock::now();
-    MeshResult mesh = mesh_tree(tree, a, offcenter);
+    std::optional<OffCenterMesh2> oc;
+    if constexpr (D == 2)
+        if (offcenter) {
+            OffCenterOptions oo;
+            oo.rho = a.rho;
+            oc = offcenter_mesh(*paper, oo);
+        }
+    MeshResult mesh = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, oc, a);
     const double seconds_mesh = seconds_since(t0);
 
     nlohmann::json origin = nlohmann::json::array();
@@ -474,7 +497,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     if (!a.ops.empty()) rep["ops_file"] = a.ops;
     if (a.check) {
         progress.stage("checking");
-        std::vector<std::string> bad = tree.check_invariants();
+        std::vector<std::string> bad = dyn ? dyn->check_invariants() : tree.check_invariants();
         for (std::string& s : mesh.problems) bad.push_back(std::move(s));
         if (!bad.empty())
             throw InternalError("--check failed (" + std::to_string(bad.size()) +

@@ -173,6 +173,15 @@ PY
     [ "$(json_get dyn.json "['ops'].__len__()")" -eq "$(grep -c '^[-+]' ops.txt)" ] || fail "ops not all timed"
     [ "$(json_get dyn.json "['ops'][0]['op']")" = "-" ] || fail "first op not an erase"
     python3 -c "import json; d=json.load(open('dyn.json')); assert d['min_angle_deg'] >= 18.43, d" || fail "min angle below 18.43"
+    # every op reports its mesh delta; inserts add simplices (the new point's star)
+    python3 -c "
+import json
+d = json.load(open('dyn.json'))
+for o in d['ops']:
+    for k in ('cells_split', 'cells_merged', 'leaves_examined', 'simplices_removed', 'simplices_added'):
+        assert k in o, (k, o)
+    if o['op'] == '+': assert o['simplices_added'] > 0, o
+" || fail "per-op mesh deltas missing or wrong"
     dom=$(python3 -c "import json; d=json.load(open('dyn.json'))['domain']; print('%r,%r,%r' % (d['origin'][0], d['origin'][1], d['width']))")
     run 0 "$bin" quadtree final.node --domain "$dom" -o scratch.node --check --quiet
     cmp -s dyn.node scratch.node || fail "dynamic and from-scratch .node differ"
