@@ -1,7 +1,9 @@
 /// Single insert/erase updates of the dynamic balanced quadtree (2D: n = 1e3 ... 1e6; 3D:
-/// 1e3 ... 1e5), uniform and clustered inputs, and versus spread at n = 1e4, against rebuilding a quality mesh of the same
-/// points with CGAL's 2D Delaunay mesher (refine_Delaunay_mesh_2, B = sqrt(2), about 20.7
-/// degrees) in the same run. Prints per-update times and the rebuild/update ratio.
+/// 1e3 ... 1e5) and of the maintained simplicial mesh (DynQuadMesh: tree + mesh; 2D 1e3 ...
+/// 1e5, 3D 1e3 ... 1e4), uniform and clustered inputs, and versus spread at n = 1e4, against
+/// rebuilding a quality mesh of the same points with CGAL's 2D Delaunay mesher
+/// (refine_Delaunay_mesh_2, B = sqrt(2), about 20.7 degrees) in the same run. Prints
+/// per-update times, simplices changed per update and the rebuild/update ratio.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -16,6 +18,7 @@
 #include <string>
 
 #include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 #include "recording_reporter.hpp"
 
@@ -39,46 +42,68 @@ std::vector<PointD<D>> make_points(std::size_t n, bool clustered, std::uint64_t 
     return pts;
 }
 
-template <int D>
-struct TreeFixture {
-    DynQuadtree<D> tree;
-    std::vector<PointD<D>> queries;  // points not in the tree
+/// A structure built over n points, and points not in it to insert and erase again.
+template <class Engine>
+struct Fixture {
+    Engine engine;
+    std::vector<typename Engine::Point> queries;
 };
 
-template <int D>
-TreeFixture<D>& fixture(std::size_t n, bool clustered) {
-    static std::map<std::pair<std::size_t, bool>, TreeFixture<D>> cache;
+/// Engine = DynQuadtree<D> (the tree alone) or DynQuadMesh<D> (tree and simplicial mesh).
+template <class Engine, int D>
+Fixture<Engine>& fixture(std::size_t n, bool clustered) {
+    static std::map<std::pair<std::size_t, bool>, Fixture<Engine>> cache;
     auto it = cache.find({n, clustered});
     if (it != cache.end()) return it->second;
     const auto pts = make_points<D>(n, clustered, 1);
-    TreeFixture<D> f{DynQuadtree<D>::build(pts), make_points<D>(4096, clustered, 2)};
+    Fixture<Engine> f{Engine::build(pts), make_points<D>(4096, clustered, 2)};
     return cache.emplace(std::make_pair(n, clustered), std::move(f)).first->second;
 }
 
-/// One iteration = insert a new point, then erase it again (two updates).
+/// Simplices removed + added by the last update (0 for the tree alone).
 template <int D>
-void BM_Update(benchmark::State& state, bool clustered) {
-    auto& f = fixture<D>(static_cast<std::size_t>(state.range(0)), clustered);
-    std::size_t i = 0, updates = 0;
+std::size_t simplices_changed(const DynQuadtree<D>&) { return 0; }
+template <int D>
+std::size_t simplices_changed(const DynQuadMesh<D>& m) {
+    return m.last_update().simplices_added + m.last_update().simplices_removed;
+}
+template <int D>
+std::size_t leaves_of(const DynQuadtree<D>& t) { return t.leaf_count(); }
+template <int D>
+std::size_t leaves_of(const DynQuadMesh<D>& m) { return m.tree().leaf_count(); }
+
+/// One iteration = insert a new point, then erase it again (two updates).
+template <class Engine>
+void run_updates(benchmark::State& state, Engine& engine,
+                 const std::vector<typename Engine::Point>& queries) {
+    std::size_t i = 0, updates = 0, changed = 0;
     for (auto _ : state) {
-        const auto& q = f.queries[i++ % f.queries.size()];
-        if (f.tree.insert(q) == InsertResult::Inserted) {
-            benchmark::DoNotOptimize(f.tree.erase(q));
+        const auto& q = queries[i++ % queries.size()];
+        if (engine.insert(q) == InsertResult::Inserted) {
+            changed += simplices_changed(engine);
+            benchmark::DoNotOptimize(engine.erase(q));
+            changed += simplices_changed(engine);
             updates += 2;
         }
     }
-    state.counters["updates"] = double(updates);
-    state.counters["updates_per_iteration"] = double(updates) / double(state.iterations());
-    state.counters["us_per_update"] = benchmark::Counter(
-        double(updates) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-    state.counters["leaves"] = double(f.tree.leaf_count());
+    const double its = double(std::max<benchmark::IterationCount>(state.iterations(), 1));
+    state.counters["updates_per_iteration"] = double(updates) / its;
+    state.counters["leaves"] = double(leaves_of(engine));
+    state.counters["simplices_changed_per_update"] = double(changed) / std::max(1.0, double(updates));
+}
+
+template <class Engine, int D>
+void BM_Update(benchmark::State& state, bool clustered) {
+    auto& f = fixture<Engine, D>(static_cast<std::size_t>(state.range(0)), clustered);
+    run_updates(state, f.engine, f.queries);
 }
 
 /// Spread L/s at fixed n = 10^4: half the points uniform in the middle third, half in a
 /// square cluster of side 10^-k (k = state.range(0)), so the spread grows like 10^k. One
 /// iteration inserts and erases a point inside the cluster (the deepest part of the tree).
-void BM_Update2D_Spread(benchmark::State& state) {
-    static std::map<long, std::pair<DynQuadtree<2>, std::vector<Vec2>>> cache;
+template <class Engine>
+void BM_Spread(benchmark::State& state) {
+    static std::map<long, Fixture<Engine>> cache;
     const long k = static_cast<long>(state.range(0));
     auto it = cache.find(k);
     if (it == cache.end()) {
@@ -88,25 +113,21 @@ void BM_Update2D_Spread(benchmark::State& state) {
         for (int i = 0; i < 5000; ++i) pts.push_back({rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)});
         for (int i = 0; i < 5000; ++i) pts.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
         for (int i = 0; i < 4096; ++i) queries.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
-        it = cache.emplace(k, std::make_pair(DynQuadtree<2>::build(pts), std::move(queries))).first;
+        it = cache.emplace(k, Fixture<Engine>{Engine::build(pts), std::move(queries)}).first;
     }
-    auto& [tree, queries] = it->second;
-    std::size_t i = 0, updates = 0;
-    for (auto _ : state) {
-        const Vec2& q = queries[i++ % queries.size()];
-        if (tree.insert(q) == InsertResult::Inserted) {
-            benchmark::DoNotOptimize(tree.erase(q));
-            updates += 2;
-        }
-    }
-    state.counters["updates_per_iteration"] = double(updates) / double(std::max<std::size_t>(state.iterations(), 1));
-    state.counters["leaves"] = double(tree.leaf_count());
+    run_updates(state, it->second.engine, it->second.queries);
     state.counters["log10_spread"] = double(k) + 2.0;  // cluster spacing ~ side / 70, box ~ 1
 }
 
-void BM_Update2D_Uniform(benchmark::State& s) { BM_Update<2>(s, false); }
-void BM_Update2D_Clustered(benchmark::State& s) { BM_Update<2>(s, true); }
-void BM_Update3D_Uniform(benchmark::State& s) { BM_Update<3>(s, false); }
+void BM_Update2D_Spread(benchmark::State& s) { BM_Spread<DynQuadtree<2>>(s); }
+void BM_MeshUpdate2D_Spread(benchmark::State& s) { BM_Spread<DynQuadMesh<2>>(s); }
+void BM_Update2D_Uniform(benchmark::State& s) { BM_Update<DynQuadtree<2>, 2>(s, false); }
+void BM_Update2D_Clustered(benchmark::State& s) { BM_Update<DynQuadtree<2>, 2>(s, true); }
+void BM_Update3D_Uniform(benchmark::State& s) { BM_Update<DynQuadtree<3>, 3>(s, false); }
+void BM_MeshUpdate2D_Uniform(benchmark::State& s) { BM_Update<DynQuadMesh<2>, 2>(s, false); }
+void BM_MeshUpdate2D_Clustered(benchmark::State& s) { BM_Update<DynQuadMesh<2>, 2>(s, true); }
+void BM_MeshUpdate3D_Uniform(benchmark::State& s) { BM_Update<DynQuadMesh<3>, 3>(s, false); }
+void BM_MeshUpdate3D_Clustered(benchmark::State& s) { BM_Update<DynQuadMesh<3>, 3>(s, true); }
 
 void BM_CgalMesher2D_Rebuild(benchmark::State& state) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -137,6 +158,11 @@ BENCHMARK(BM_Update2D_Uniform)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(
 BENCHMARK(BM_Update2D_Clustered)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Update3D_Uniform)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Update2D_Spread)->DenseRange(1, 10, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshUpdate2D_Uniform)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshUpdate2D_Clustered)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshUpdate3D_Uniform)->RangeMultiplier(10)->Range(1000, 10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshUpdate3D_Clustered)->RangeMultiplier(10)->Range(1000, 10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshUpdate2D_Spread)->DenseRange(1, 10, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CgalMesher2D_Rebuild)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
@@ -149,11 +175,13 @@ void print_summary(const dynmesh::bench::RecordingReporter& rep) {
         for (const auto& [n, r] : by_n) {
             // One iteration is an insert and an erase of the same point (two updates).
             const double per = r.seconds / std::max(r.counter("updates_per_iteration", 1.0), 1e-300);
-            if (fn == "BM_Update2D_Spread")
-                std::printf("%-24s n=   10000 cluster side 1e-%zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
+            if (fn.ends_with("_Spread"))
+                std::printf("%-26s n=   10000 cluster side 1e-%zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
             else
-                std::printf("%-24s n=%8zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
-            if (fn == "BM_Update2D_Uniform" && cgal.count(n))
+                std::printf("%-26s n=%8zu  %10.2f us/update", fn.c_str(), n, per * 1e6);
+            if (const double c = r.counter("simplices_changed_per_update", 0.0); c > 0)
+                std::printf("  %7.1f simplices changed", c);
+            if ((fn == "BM_Update2D_Uniform" || fn == "BM_MeshUpdate2D_Uniform") && cgal.count(n))
                 std::printf("   CGAL rebuild %9.4f s = %10.0f x", cgal.at(n).seconds, cgal.at(n).seconds / per);
             std::printf("\n");
         }
