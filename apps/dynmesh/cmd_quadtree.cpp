@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -41,6 +42,7 @@ namespace {
 struct QuadtreeArgs {
     CommonOptions common;
     std::string points, ops, output;
+    std::string png;  ///< 2D: picture of the mesh before and after the ops
     std::string domain = "auto";
     int dim = 2;
     double rho = 0;  ///< with rho_given: the off-center mesh with this bound (2D only)
@@ -361,6 +363,55 @@ MeshResult describe_mesh(OctMesh3 mesh, const std::optional<OffCenterMesh2>& /*o
     return r;
 }
 
+/// The plotting script next to the sources, when it is there.
+std::filesystem::path plot_script() {
+#ifdef DYNMESH_SCRIPTS_DIR
+    return std::filesystem::path(DYNMESH_SCRIPTS_DIR) / "plot_mesh2d.py";
+#else
+    return {};
+#endif
+}
+
+/// Draws two 2D meshes side by side into `png` (written atomically): the meshes go to
+/// before.node/.ele and after.node/.ele in a private temporary directory, and
+/// scripts/plot_mesh2d.py renders them with matplotlib.
+void write_before_after_png(const MeshResult& before, const MeshResult& after,
+                            const std::string& png) {
+    namespace fs = std::filesystem;
+    const fs::path script = plot_script();
+    if (script.empty() || !fs::exists(script))
+        throw IoError("--png: the plotting script plot_mesh2d.py is not available");
+    if (!fs::exists("/usr/bin/python3"))
+        throw IoError("--png: needs /usr/bin/python3 with matplotlib (Debian python3-matplotlib)");
+    std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
+    const fs::path dir = tmpl;
+    struct Cleanup {
+        fs::path d;
+        ~Cleanup() {
+            std::error_code ec;
+            fs::remove_all(d, ec);
+        }
+    } cleanup{dir};
+    for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
+        (void)write_simplex_mesh(dir / name, SimplexMeshView{.dimension = 2,
+                                                             .points = m->points,
+                                                             .simplices = m->simplices});
+    const fs::path target = fs::absolute(png);
+    const fs::path tmp_png = target.parent_path() / (".tmp-" + target.filename().string());
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + tmp_png.string() +
+                            "' '" + (dir / "before.node").string() + "' '" +
+                            (dir / "after.node").string() + "' > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0 || !fs::exists(tmp_png)) {
+        std::error_code ec;
+        fs::remove(tmp_png, ec);
+        throw IoError("--png " + png +
+                      ": drawing failed (needs /usr/bin/python3 with matplotlib, Debian "
+                      "python3-matplotlib)");
+    }
+    fs::rename(tmp_png, target);
+}
+
 template <int D>
 void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     constexpr auto kD = static_cast<std::size_t>(D);
@@ -420,6 +471,15 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     if (std::string e = tree_underflow(tree); !e.empty()) throw InvalidInput(a.points + ": " + e);
     const auto insert = [&](const PointD<D>& p) { return dyn ? dyn->insert(p) : paper->insert(p); };
     const auto erase = [&](const PointD<D>& p) { return dyn ? dyn->erase(p) : paper->erase(p); };
+
+    std::optional<MeshResult> before;  // --png: the mesh before the update script
+    if constexpr (D == 2)
+        if (!a.png.empty()) {
+            progress.stage("meshing the initial points for --png");
+            std::optional<OffCenterMesh2> oc0;
+            if (offcenter) oc0 = offcenter_mesh(*paper, OffCenterOptions{.rho = a.rho});
+            before = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, oc0, a);
+        }
 
     progress.stage("applying " + std::to_string(ops.size()) + " updates");
     nlohmann::json op_times = nlohmann::json::array();
@@ -518,6 +578,11 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
         write_soup(soup, a.output);
         written.push_back(a.output);
     }
+    if (before) {
+        progress.stage("drawing " + a.png);
+        write_before_after_png(*before, mesh, a.png);
+        written.push_back(a.png);
+    }
     write_report(a.common, rep);
     std::cout << tree_name << ": " << tree.size() << " points, " << tree.leaf_count()
               << " leaves, " << ops.size() << " updates; mesh " << mesh.points.size()
@@ -536,6 +601,10 @@ void run_quadtree(const QuadtreeArgs& a) {
         DYNMESH_CHECK(a.rho > std::sqrt(2.0), "--rho " + fmt_double(a.rho) +
                                                   ": rho must be > sqrt(2) ~ 1.41421356");
     }
+    if (!a.png.empty()) {
+        DYNMESH_CHECK(a.dim == 2, "--png: pictures are drawn for 2D meshes only (got --dim 3)");
+        DYNMESH_CHECK(lower_ext(a.png) == ".png", "--png " + a.png + ": expected a .png file");
+    }
     const std::string ext = lower_ext(a.output);
     std::vector<std::string> allowed = kSimplexExtensions;
     if (a.dim == 2) allowed.insert(allowed.end(), kSoupExtensions2D.begin(), kSoupExtensions2D.end());
@@ -548,6 +617,7 @@ void run_quadtree(const QuadtreeArgs& a) {
         base.replace_extension();
         outputs = {base.string() + ".node", base.string() + ".ele"};
     }
+    if (!a.png.empty()) outputs.push_back(a.png);
     for (const std::string& out : outputs) {
         ensure_not_same_file(a.points, out);
         if (!a.ops.empty()) ensure_not_same_file(a.ops, out);
@@ -603,6 +673,9 @@ void register_quadtree(CLI::App& root, int& result) {
                     "all inserted points, 4x its larger extent. Output is in input coordinates "
                     "either way")
         ->capture_default_str();
+    sub->add_option("--png", args->png,
+                    "2D: also draw the mesh before and after the update script side by side "
+                    "into this PNG (needs /usr/bin/python3 with matplotlib)");
     sub->add_flag("--check", args->check,
                   "Verify the tree invariants, the mesh (conforming, positively oriented, covers "
                   "the box) and the angle (2D) or dihedral-angle (3D) bounds");

@@ -188,6 +188,12 @@ for o in d['ops']:
     cmp -s dyn.ele scratch.ele || fail "dynamic and from-scratch .ele differ"
     run 0 "$bin" quadtree "$pts" -o dots.off --quiet
     head -1 dots.off | grep -q OFF || fail "no OFF output"
+    # --png: the mesh before and after the script, drawn with /usr/bin/python3 + matplotlib
+    if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+        run 0 "$bin" qmesh "$pts" --ops ops.txt -o pic.node --png before_after.png --quiet
+        [ "$(head -c 4 before_after.png | tail -c 3)" = "PNG" ] || fail "--png wrote no PNG"
+        cmp -s pic.node dyn.node || fail "--png changed the mesh"
+    fi
     ;;
 quadtree_bad)
     pts=$data/planar/dots.node
@@ -214,6 +220,8 @@ quadtree_bad)
     expect_error "middle third" "$pts" --domain 0,0,1
     expect_error "--dim is 3" "$pts" --dim 3
     expect_error "rho" "$pts" --rho 1.2
+    expect_error "expected a .png" "$pts" --png pic.jpg
+    expect_error "2D meshes only" "$pts" --dim 3 --png pic.png
     # 3D: dimension mismatch both ways, NaN, duplicates, a missing point, outside the domain,
     # malformed ops lines, and cells too small for double precision (spread too large).
     printf '0.1 0.2 0.3\n0.5 0.5 0.5\n0.7 0.1 0.4\n' > p3.xyz
