@@ -80,6 +80,11 @@ void run_sequences(std::uint64_t seed, int sequences, int every) {
             ASSERT_EQ(simplices_of(got).size(), dm.simplex_count()) << what;
             const auto invalid = check_mesh(got);
             ASSERT_TRUE(invalid.empty()) << what << ":\n" << joined(invalid);
+            // Every input point is a vertex, at its own coordinates.
+            const auto pts = dm.tree().points();
+            ASSERT_EQ(got.input_vertices.size(), pts.size()) << what;
+            for (std::size_t j = 0; j < pts.size(); ++j)
+                ASSERT_EQ(got.points[got.input_vertices[j]], pts[j].second) << what;
         }
     }
 }
