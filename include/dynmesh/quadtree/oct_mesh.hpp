@@ -4,10 +4,10 @@
 /// quad_mesh.hpp.
 ///
 /// As in 2D, the rules need the **mesh-mode** tree (isolation radius k = 2 plus rules U and R,
-/// §1.4): oct_mesh() first refines the tree's leaves to the mesh-mode tree of the same point
-/// set (seeded with the tree's internal cells, closed under C with k = 2, A, B, U and R). The
-/// star lemma (§4.1) then says that the 8 leaves around the warped corner v of every input
-/// point p all have the size s of p's leaf and form the cube [v - s, v + s]^3. Then:
+/// §1.4): oct_mesh() uses the tree itself when it is in mesh mode and otherwise builds the
+/// mesh-mode tree of the same point set. The star lemma (§4.1) then says that the 8 leaves
+/// around the warped corner v of every input point p all have the size s of p's leaf and form
+/// the cube [v - s, v + s]^3. Then:
 ///   * warping (§4.2): the corner v of p's leaf nearest to p (ties round up) is moved onto p;
 ///     the vertex keeps its lattice key. Every other vertex sits at its lattice position;
 ///   * facets (§4.3): a face of a leaf is one square facet when the leaf across is not
@@ -21,8 +21,9 @@
 ///     the star and no tetrahedron is flat;
 ///   * every other leaf: cone from the cell centre over the facets of its six faces.
 /// At most 48 tetrahedra per leaf (§4.6). The mesh is a function of (domain, point set)
-/// alone, so it inherits the tree's history independence; it is rebuilt from scratch on each
-/// call (no incremental update yet).
+/// alone, so it inherits the tree's history independence. oct_mesh() computes it from
+/// scratch; DynQuadMesh<3> (dyn_mesh.hpp) maintains it under insertions and deletions, with
+/// identical output.
 ///
 /// Quality (§4.5): dihedral angles of regular cells lie in [35.26°, 125.26°]; the spec's
 /// enumeration over star configurations gives [13.16°, 164.21°], which is the range promised

@@ -4,11 +4,10 @@
 ///
 /// The spec's rules need the **mesh-mode** tree (isolation radius k = 2 plus rules U and R,
 /// §1.4), which guarantees that the four leaves around the warped corner of every input point
-/// all have the point leaf's size (the star lemma, §4.1). DynQuadtree maintains the paper-mode
-/// tree (k = 1). quad_mesh() therefore first refines the tree's leaves to the mesh-mode tree of
-/// the same point set: it seeds I with the tree's internal cells (paper-mode I(P) is a subset of
-/// mesh-mode I(P), since every paper rule is implied by a mesh rule) and closes it under
-/// C (k = 2), A, B, U and R. Then, for D = 2:
+/// all have the point leaf's size (the star lemma, §4.1). quad_mesh() uses the tree itself when
+/// it is in mesh mode (QuadtreeMode::Mesh) and otherwise builds the mesh-mode tree of the same
+/// point set. Each leaf is then triangulated from a few bits of its neighbourhood
+/// (src/quadtree/leaf_mesh.hpp), for D = 2:
 ///   * warping (§4.2): the corner v of a point's leaf nearest to the point (ties round up) is
 ///     moved onto the point; the vertex keeps its lattice key;
 ///   * the point's leaf: cone from the point over the sides not incident to v;
@@ -16,7 +15,8 @@
 ///   * every other leaf: two triangles split by the lower-left/upper-right diagonal when no
 ///     side carries a hanging vertex, else a fan from the cell centre.
 /// The mesh is a function of (domain, point set) alone, so it inherits the tree's history
-/// independence; it is rebuilt from scratch on each call (no incremental update yet).
+/// independence. quad_mesh() computes it from scratch; DynQuadMesh<2> (dyn_mesh.hpp) maintains
+/// it under insertions and deletions, with identical output.
 /// Quality (§4.5): every angle lies in [arctan(1/3), 135°] = [18.43°, 135°].
 
 #include <array>
