@@ -24,6 +24,20 @@ using namespace testing_quadtree;
 template <int D>
 using Tree = DynQuadtree<D>;
 
+/// Calls f(o) for every offset o in {-1, 0, 1}^D.
+template <int D, class F>
+void for_offsets(F&& f) {
+    std::array<int, D> o;
+    o.fill(-1);
+    while (true) {
+        f(o);
+        int i = 0;
+        while (i < D && o[i] == 1) o[i++] = -1;
+        if (i == D) return;
+        ++o[i];
+    }
+}
+
 /// Independent oracle: I(P) by brute force straight from the definition (spec §1.4; paper
 /// mode k = 1, rules C, A, B; mesh mode k = 2 and rules U, R as well).
 template <int D>
@@ -64,43 +78,29 @@ std::vector<CellId<D>> oracle_leaves(const std::vector<typename Tree<D>::GridPoi
         });
         if (mesh && holds) {  // rule U: every equal-size neighbour
             const std::int64_t n = std::int64_t{1} << (K - x.level);
-            std::array<int, D> o;
-            o.fill(-1);
-            while (true) {
+            for_offsets<D>([&](const std::array<int, D>& o) {
                 CellId<D> y{x.level, {}};
-                bool ok = true;
-                for (int i = 0; i < D && ok; ++i) {
+                for (int i = 0; i < D; ++i) {
                     const std::int64_t b = static_cast<std::int64_t>(x.index[i]) + o[i];
-                    ok = b >= 0 && b < n;
+                    if (b < 0 || b >= n) return;
                     y.index[i] = static_cast<std::uint64_t>(b);
                 }
-                if (ok && in_i.insert(y).second) work.push_back(y);
-                int i = 0;
-                while (i < D && o[i] == 1) o[i++] = -1;
-                if (i == D) break;
-                ++o[i];
-            }
+                if (in_i.insert(y).second) work.push_back(y);
+            });
         }
         if (x.level == K) continue;
         const std::int64_t n = std::int64_t{1} << (K - x.level - 1);
         // every cell of the next level whose closure meets x's closure
-        std::array<int, D> o;
-        o.fill(-1);
-        while (true) {
+        for_offsets<D>([&](const std::array<int, D>& o) {
             CellId<D> y{x.level + 1, {}};
-            bool ok = true;
-            for (int i = 0; i < D && ok; ++i) {
+            for (int i = 0; i < D; ++i) {
                 const auto a = static_cast<std::int64_t>(x.index[i]);
                 const std::int64_t b = (a >> 1) + o[i];
-                ok = b >= 0 && b < n && 2 * b <= a + 1 && a <= 2 * b + 2;
+                if (b < 0 || b >= n || 2 * b > a + 1 || a > 2 * b + 2) return;
                 y.index[i] = static_cast<std::uint64_t>(b);
             }
-            if (ok && in_i.insert(y).second) work.push_back(y);
-            int i = 0;
-            while (i < D && o[i] == 1) o[i++] = -1;
-            if (i == D) break;
-            ++o[i];
-        }
+            if (in_i.insert(y).second) work.push_back(y);
+        });
     }
     std::vector<CellId<D>> leaves;
     if (in_i.empty()) leaves.push_back({K, {}});
