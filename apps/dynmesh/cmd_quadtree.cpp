@@ -30,6 +30,7 @@
 #include "dynmesh/io/simplex_mesh_io.hpp"
 #include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/quadtree/dyn_mesh.hpp"
+#include "dynmesh/quadtree/dyn_offcenter.hpp"
 #include "dynmesh/quadtree/oct_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quad_mesh.hpp"
@@ -456,29 +457,46 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
         }
     }
 
-    // The quadtree mesher maintains its mesh through the updates (DynQuadMesh); the off-center
-    // mesher refines the final point set of a paper-mode tree.
+    // Both meshers maintain their mesh through the updates: DynQuadMesh (quadtree postprocess)
+    // or, with --rho in 2D, DynOffCenterMesh2 (off-center refinement).
     std::optional<DynQuadMesh<D>> dyn;
-    std::optional<DynQuadtree<D>> paper;
-    progress.stage(std::string("building the ") + tree_name + (offcenter ? "" : " and its mesh"));
+    std::optional<DynOffCenterMesh2> off;  // D == 2 only
+    OffCenterOptions oc_options;
+    oc_options.rho = a.rho;
+    progress.stage(std::string("building the ") + tree_name + " and its mesh");
     auto t0 = std::chrono::steady_clock::now();
-    if (offcenter)
-        paper.emplace(DynQuadtree<D>::build(pts, domain));
-    else
-        dyn.emplace(DynQuadMesh<D>::build(pts, domain));
+    if constexpr (D == 2) {
+        if (offcenter) off.emplace(DynOffCenterMesh2::build(pts, domain, oc_options));
+    }
+    if (!offcenter) dyn.emplace(DynQuadMesh<D>::build(pts, domain));
     const double seconds_build = seconds_since(t0);
-    const DynQuadtree<D>& tree = dyn ? dyn->tree() : *paper;
+    const DynQuadtree<D>& tree = [&]() -> const DynQuadtree<D>& {
+        if constexpr (D == 2)
+            if (off) return off->tree();
+        return dyn->tree();
+    }();
     if (std::string e = tree_underflow(tree); !e.empty()) throw InvalidInput(a.points + ": " + e);
-    const auto insert = [&](const PointD<D>& p) { return dyn ? dyn->insert(p) : paper->insert(p); };
-    const auto erase = [&](const PointD<D>& p) { return dyn ? dyn->erase(p) : paper->erase(p); };
+    const auto insert = [&](const PointD<D>& p) {
+        if constexpr (D == 2)
+            if (off) return off->insert(p);
+        return dyn->insert(p);
+    };
+    const auto erase = [&](const PointD<D>& p) {
+        if constexpr (D == 2)
+            if (off) return off->erase(p);
+        return dyn->erase(p);
+    };
+    const auto current_offcenter = [&]() -> std::optional<OffCenterMesh2> {
+        if constexpr (D == 2)
+            if (off) return off->mesh();
+        return std::nullopt;
+    };
 
     std::optional<MeshResult> before;  // --png: the mesh before the update script
     if constexpr (D == 2)
         if (!a.png.empty()) {
             progress.stage("meshing the initial points for --png");
-            std::optional<OffCenterMesh2> oc0;
-            if (offcenter) oc0 = offcenter_mesh(*paper, OffCenterOptions{.rho = a.rho});
-            before = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, oc0, a);
+            before = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, current_offcenter(), a);
         }
 
     progress.stage("applying " + std::to_string(ops.size()) + " updates");
@@ -522,19 +540,21 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
             entry["simplices_removed"] = u.simplices_removed;
             entry["simplices_added"] = u.simplices_added;
         }
+        if constexpr (D == 2)
+            if (off) {
+                const OffCenterUpdateReport& u = off->last_update();
+                entry["steiner_added"] = u.steiner_added;
+                entry["steiner_removed"] = u.steiner_removed;
+                entry["simplices_removed"] = u.triangles_removed;
+                entry["simplices_added"] = u.triangles_added;
+                entry["evaluations"] = u.evaluations;
+            }
         op_times.push_back(std::move(entry));
     }
 
     progress.stage("meshing");
     t0 = std::chrono::steady_clock::now();
-    std::optional<OffCenterMesh2> oc;
-    if constexpr (D == 2)
-        if (offcenter) {
-            OffCenterOptions oo;
-            oo.rho = a.rho;
-            oc = offcenter_mesh(*paper, oo);
-        }
-    MeshResult mesh = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, oc, a);
+    MeshResult mesh = describe_mesh(dyn ? dyn->mesh() : SimplexMeshD<D>{}, current_offcenter(), a);
     const double seconds_mesh = seconds_since(t0);
 
     nlohmann::json origin = nlohmann::json::array();
@@ -557,7 +577,10 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     if (!a.ops.empty()) rep["ops_file"] = a.ops;
     if (a.check) {
         progress.stage("checking");
-        std::vector<std::string> bad = dyn ? dyn->check_invariants() : tree.check_invariants();
+        std::vector<std::string> bad = tree.check_invariants();
+        if (dyn) bad = dyn->check_invariants();
+        if constexpr (D == 2)
+            if (off) bad = off->check_invariants();
         for (std::string& s : mesh.problems) bad.push_back(std::move(s));
         if (!bad.empty())
             throw InternalError("--check failed (" + std::to_string(bad.size()) +

@@ -14,6 +14,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -56,11 +57,6 @@ struct LooseInfo {
     Vec2 t;
 };
 
-/// Angle ∠ptq (radians, in [0, π]).
-double angle_at(const Vec2& t, const Vec2& p, const Vec2& q) {
-    const Vec2 u = p - t, v = q - t;
-    return std::atan2(std::fabs(cross(u, v)), dot(u, v));
-}
 
 /// The box sides, numbered bottom, right, top, left; coordinates along a side are x for even
 /// sides and y for odd ones.
@@ -73,36 +69,25 @@ struct Subsegment {
 class OffCenterRefiner {
 public:
     OffCenterRefiner(const DynQuadtree<2>& tree, const OffCenterOptions& options)
-        : tree_(tree), options_(options) {
-        origin_ = tree.options().origin;
-        width_ = tree.options().width;
-        hi_ = {origin_.x + width_, origin_.y + width_};
-        theta_ = std::asin(1.0 / (2.0 * options.rho));
-        sigma_apex_ = options.rho + std::sqrt(options.rho * options.rho - 0.25);
-        scale_ = std::max({std::fabs(origin_.x), std::fabs(origin_.y), std::fabs(hi_.x),
-                           std::fabs(hi_.y), width_});
+        : tree_(tree), options_(options),
+          kernel_(tree.options().origin, tree.options().width, options) {
+        origin_ = kernel_.origin;
+        width_ = kernel_.width;
+        hi_ = kernel_.hi;
     }
 
     OffCenterMesh2 run();
 
 private:
-    [[nodiscard]] double slack(double len2) const {
-        return 1e-12 + 64.0 * DBL_EPSILON * scale_ / std::sqrt(len2);
+    [[nodiscard]] int size_class(double len2) const { return kernel_.size_class(len2); }
+    [[nodiscard]] Vec2 side_point(int side, double c) const { return kernel_.side_point(side, c); }
+    [[nodiscard]] static double along(int side, const Vec2& p) {
+        return detail::OffCenterKernel::along(side, p);
     }
-    [[nodiscard]] int size_class(double len2) const {
-        int e = 0;
-        (void)std::frexp(len2 / (width_ * width_), &e);  // len2/W² in [2^(e-1), 2^e)
-        return static_cast<int>(std::floor((e - 1) / 2.0));
-    }
-    [[nodiscard]] Vec2 side_point(int side, double c) const {
-        switch (side) {
-            case 0: return {c, origin_.y};
-            case 1: return {hi_.x, c};
-            case 2: return {c, hi_.y};
-            default: return {origin_.x, c};
-        }
-    }
-    [[nodiscard]] static double along(int side, const Vec2& p) { return side % 2 == 0 ? p.x : p.y; }
+    /// The lexicographically smallest vertex on the given side of lo -> hi among those of the
+    /// degenerate Delaunay cell of face f (f itself when no neighbour is cocircular).
+    [[nodiscard]] VertexHandle canonical_opposite(FaceHandle f, VertexHandle lo, VertexHandle hi,
+                                                  bool left) const;
 
     /// Inserts p; returns an invalid handle if p is already a vertex.
     VertexHandle add_vertex(const Vec2& p, FaceHandle hint);
@@ -121,8 +106,9 @@ private:
 
     const DynQuadtree<2>& tree_;
     OffCenterOptions options_;
+    detail::OffCenterKernel kernel_;
     Vec2 origin_{}, hi_{};
-    double width_ = 1, theta_ = 0, sigma_apex_ = 0, scale_ = 1;
+    double width_ = 1;
 
     Delaunay dt_;
     std::vector<VertexHandle> vertices_;  // by insertion id (= info())
@@ -172,6 +158,39 @@ void OffCenterRefiner::split(const Subsegment& s) {
     enqueue_incident(v);
 }
 
+VertexHandle OffCenterRefiner::canonical_opposite(FaceHandle f, VertexHandle lo,
+                                                 VertexHandle hi, bool left) const {
+    // Walk the faces reachable from f across edges whose far vertex is cocircular with the
+    // face (exact test), never across the edge lo-hi itself.
+    std::vector<FaceHandle> stack{f}, seen{f};
+    VertexHandle best;
+    const Vec2 p = to_vec(lo->point()), q = to_vec(hi->point());
+    while (!stack.empty()) {
+        const FaceHandle g = stack.back();
+        stack.pop_back();
+        for (int k = 0; k < 3; ++k) {
+            const VertexHandle v = g->vertex(k);
+            if (v != lo && v != hi && !dt_.is_infinite(v)) {
+                const Sign o = orient2d(p, q, to_vec(v->point()));
+                if (o == (left ? Sign::Positive : Sign::Negative) &&
+                    (best == VertexHandle() || lex_less(to_vec(v->point()), to_vec(best->point()))))
+                    best = v;
+            }
+            const VertexHandle a = g->vertex(Delaunay::ccw(k)), b = g->vertex(Delaunay::cw(k));
+            if ((a == lo && b == hi) || (a == hi && b == lo)) continue;
+            const FaceHandle h = g->neighbor(k);
+            if (dt_.is_infinite(h) || std::find(seen.begin(), seen.end(), h) != seen.end())
+                continue;
+            const VertexHandle far = h->vertex(dt_.mirror_index(g, k));
+            if (dt_.side_of_oriented_circle(g, far->point()) != CGAL::ON_ORIENTED_BOUNDARY)
+                continue;
+            seen.push_back(h);
+            stack.push_back(h);
+        }
+    }
+    return best;
+}
+
 std::optional<LooseInfo> OffCenterRefiner::loose(VertexHandle lo, VertexHandle hi,
                                                  Side side) const {
     FaceHandle f;
@@ -183,16 +202,18 @@ std::optional<LooseInfo> OffCenterRefiner::loose(VertexHandle lo, VertexHandle h
     const bool f_left_of_lohi = f->vertex(Delaunay::ccw(i)) == lo;
     const bool want_left = side == Side::Ccw;
     const FaceHandle this_face = f_left_of_lohi == want_left ? f : g;
-    const VertexHandle t = f_left_of_lohi == want_left ? f->vertex(i) : g->vertex(j);
-    const VertexHandle u = f_left_of_lohi == want_left ? g->vertex(j) : f->vertex(i);
+    const FaceHandle other_face = f_left_of_lohi == want_left ? g : f;
+    VertexHandle t = f_left_of_lohi == want_left ? f->vertex(i) : g->vertex(j);
+    VertexHandle u = f_left_of_lohi == want_left ? g->vertex(j) : f->vertex(i);
     if (dt_.is_infinite(t)) return std::nullopt;  // outside the box: no leaf to refine
+    // Canonical opposite vertices (file comment, degenerate configurations).
+    t = canonical_opposite(this_face, lo, hi, want_left);
+    if (!dt_.is_infinite(u)) u = canonical_opposite(other_face, lo, hi, !want_left);
     const Vec2 p = to_vec(lo->point()), q = to_vec(hi->point()), tp = to_vec(t->point());
     const double len2 = dot(q - p, q - p);
-    const double delta = slack(len2);
     // Closed leaf: t (same side) is inside iff ∠ptq ≥ θ; u (other side) iff ∠puq ≥ π − θ.
-    if (angle_at(tp, p, q) >= theta_ - delta) return std::nullopt;
-    if (!dt_.is_infinite(u) &&
-        angle_at(to_vec(u->point()), p, q) >= std::numbers::pi - theta_ - delta)
+    if (kernel_.in_leaf_same_side(tp, p, q, len2)) return std::nullopt;
+    if (!dt_.is_infinite(u) && kernel_.in_leaf_other_side(to_vec(u->point()), p, q, len2))
         return std::nullopt;
     return LooseInfo{this_face, tp};
 }
@@ -246,14 +267,8 @@ void OffCenterRefiner::process(const Candidate& c) {
     const auto info = loose(c.vlo, c.vhi, c.side);
     if (!info) return;  // no longer loose: an earlier insertion filled its leaf
     // Off-center (spec §5.1): m + min(σ_apex, σ_t)·perp, perp = (hi − lo) turned to the side.
-    const Vec2 d = c.hi - c.lo;
-    const Vec2 perp = c.side == Side::Ccw ? Vec2{-d.y, d.x} : Vec2{d.y, -d.x};
-    const Vec2 m{0.5 * (c.lo.x + c.hi.x), 0.5 * (c.lo.y + c.hi.y)};
-    const Vec2 w = info->t - m;
-    const double sigma_t = (dot(w, w) - 0.25 * c.len2) / (2.0 * dot(w, perp));
-    const bool apex = options_.use_offcenters && sigma_apex_ <= sigma_t;
-    const double sigma = apex ? sigma_apex_ : sigma_t;
-    const Vec2 r = m + sigma * perp;
+    bool apex = false;
+    const Vec2 r = kernel_.offcenter(c.lo, c.hi, c.side == Side::Cw, c.len2, info->t, apex);
 
     // Boundary (spec §5.3.1): an off-center in the closed diametral disc of a box subsegment
     // (or outside the open box) is replaced by the midpoints of the subsegments it encroaches;
@@ -372,17 +387,9 @@ OffCenterMesh2 OffCenterRefiner::run() {
     for (auto f = dt_.finite_faces_begin(); f != dt_.finite_faces_end(); ++f) {
         std::array<std::uint32_t, 3> t{};
         for (int k = 0; k < 3; ++k) t[static_cast<std::size_t>(k)] = final_index[f->vertex(k)->info()];
-        const auto first = std::min_element(t.begin(), t.end());
-        std::rotate(t.begin(), first, t.end());  // keeps the ccw orientation
         out_.triangles.push_back(t);
     }
-    std::sort(out_.triangles.begin(), out_.triangles.end());
-    for (const auto& t : out_.triangles)
-        for (std::size_t k = 0; k < 3; ++k) {
-            const double a = angle_at(out_.points[t[k]], out_.points[t[(k + 1) % 3]],
-                                      out_.points[t[(k + 2) % 3]]);
-            out_.min_angle_deg = std::min(out_.min_angle_deg, a * 180.0 / std::numbers::pi);
-        }
+    detail::finish_offcenter_mesh(out_);
     return std::move(out_);
 }
 
@@ -392,6 +399,155 @@ long double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
 }
 
 }  // namespace
+
+namespace detail {
+
+OffCenterKernel::OffCenterKernel(const Vec2& origin_in, double width_in,
+                                 const OffCenterOptions& options)
+    : origin(origin_in), hi{origin_in.x + width_in, origin_in.y + width_in}, width(width_in),
+      theta(std::asin(1.0 / (2.0 * options.rho))),
+      sigma_apex(options.rho + std::sqrt(options.rho * options.rho - 0.25)),
+      scale(std::max({std::fabs(origin_in.x), std::fabs(origin_in.y), std::fabs(hi.x),
+                      std::fabs(hi.y), width_in})),
+      use_offcenters(options.use_offcenters) {}
+
+double OffCenterKernel::slack(double len2) const {
+    return 1e-12 + 64.0 * DBL_EPSILON * scale / std::sqrt(len2);
+}
+
+int OffCenterKernel::size_class(double len2) const {
+    int e = 0;
+    (void)std::frexp(len2 / (width * width), &e);  // len2/W² in [2^(e-1), 2^e)
+    return static_cast<int>(std::floor((e - 1) / 2.0));
+}
+
+Vec2 OffCenterKernel::side_point(int side, double c) const {
+    switch (side) {
+        case 0: return {c, origin.y};
+        case 1: return {hi.x, c};
+        case 2: return {c, hi.y};
+        default: return {origin.x, c};
+    }
+}
+
+double OffCenterKernel::along(int side, const Vec2& p) { return side % 2 == 0 ? p.x : p.y; }
+
+double OffCenterKernel::angle_at(const Vec2& t, const Vec2& p, const Vec2& q) {
+    const Vec2 u = p - t, v = q - t;
+    return std::atan2(std::fabs(cross(u, v)), dot(u, v));
+}
+
+bool OffCenterKernel::in_leaf_same_side(const Vec2& t, const Vec2& lo, const Vec2& hi_pt,
+                                        double len2) const {
+    return angle_at(t, lo, hi_pt) >= theta - slack(len2);
+}
+
+bool OffCenterKernel::in_leaf_other_side(const Vec2& u, const Vec2& lo, const Vec2& hi_pt,
+                                         double len2) const {
+    return angle_at(u, lo, hi_pt) >= std::numbers::pi - theta - slack(len2);
+}
+
+Vec2 OffCenterKernel::offcenter(const Vec2& lo, const Vec2& hi_pt, bool cw, double len2,
+                                const Vec2& t, bool& apex) const {
+    const Vec2 d = hi_pt - lo;
+    const Vec2 perp = cw ? Vec2{d.y, -d.x} : Vec2{-d.y, d.x};
+    const Vec2 m{0.5 * (lo.x + hi_pt.x), 0.5 * (lo.y + hi_pt.y)};
+    const Vec2 w = t - m;
+    const double sigma_t = (dot(w, w) - 0.25 * len2) / (2.0 * dot(w, perp));
+    apex = use_offcenters && sigma_apex <= sigma_t;
+    const double sigma = apex ? sigma_apex : sigma_t;
+    return m + sigma * perp;
+}
+
+Vec2 OffCenterKernel::apex_point(const Vec2& lo, const Vec2& hi_pt, bool cw) const {
+    const Vec2 d = hi_pt - lo;
+    const Vec2 perp = cw ? Vec2{d.y, -d.x} : Vec2{-d.y, d.x};
+    const Vec2 m{0.5 * (lo.x + hi_pt.x), 0.5 * (lo.y + hi_pt.y)};
+    return m + sigma_apex * perp;
+}
+
+void finish_offcenter_mesh(OffCenterMesh2& mesh) {
+    auto& tris = mesh.triangles;
+    const auto& pts = mesh.points;
+    // Directed edge -> triangle.
+    std::unordered_map<std::uint64_t, std::uint32_t> edge_tri;
+    edge_tri.reserve(3 * tris.size());
+    auto ekey = [](std::uint32_t a, std::uint32_t b) {
+        return (static_cast<std::uint64_t>(a) << 32) | b;
+    };
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+        for (std::size_t k = 0; k < 3; ++k) edge_tri[ekey(tris[t][k], tris[t][(k + 1) % 3])] = t;
+    // Union the two triangles of every interior edge whose four points are cocircular.
+    std::vector<std::uint32_t> parent(tris.size());
+    for (std::uint32_t t = 0; t < tris.size(); ++t) parent[t] = t;
+    auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    bool any = false;
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3], c = tris[t][(k + 2) % 3];
+            if (a > b) continue;
+            const auto it = edge_tri.find(ekey(b, a));
+            if (it == edge_tri.end()) continue;
+            const auto& o = tris[it->second];
+            const std::uint32_t d =
+                o[0] != a && o[0] != b ? o[0] : (o[1] != a && o[1] != b ? o[1] : o[2]);
+            if (incircle(pts[a], pts[b], pts[c], pts[d]) != Sign::Zero) continue;
+            parent[find(t)] = find(it->second);
+            any = true;
+        }
+    if (any) {
+        // Each degenerate cell: its boundary cycle (directed edges without a twin inside the
+        // cell), then a fan from its smallest vertex.
+        std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> cells;
+        for (std::uint32_t t = 0; t < tris.size(); ++t) cells[find(t)].push_back(t);
+        std::vector<std::array<std::uint32_t, 3>> out;
+        out.reserve(tris.size());
+        for (std::uint32_t t = 0; t < tris.size(); ++t) {
+            const auto& cell = cells[find(t)];
+            if (cell.size() == 1) {
+                out.push_back(tris[t]);
+                continue;
+            }
+            if (cell.front() != t) continue;  // handle each cell once
+            std::unordered_map<std::uint32_t, std::uint32_t> next;
+            for (std::uint32_t f : cell)
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const std::uint32_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+                    const auto it = edge_tri.find(ekey(b, a));
+                    if (it != edge_tri.end() && find(it->second) == find(t)) continue;
+                    next[a] = b;
+                }
+            std::uint32_t v0 = std::numeric_limits<std::uint32_t>::max();
+            for (const auto& [a, b] : next) v0 = std::min(v0, a);
+            std::vector<std::uint32_t> ring{v0};
+            for (std::uint32_t v = next.at(v0); v != v0 && ring.size() <= next.size();
+                 v = next.at(v))
+                ring.push_back(v);
+            if (ring.size() != next.size())
+                throw InternalError("offcenter_mesh: a degenerate Delaunay cell is not a polygon");
+            for (std::size_t j = 1; j + 1 < ring.size(); ++j)
+                out.push_back({v0, ring[j], ring[j + 1]});
+        }
+        tris = std::move(out);
+    }
+    for (auto& t : tris) {
+        const auto first = std::min_element(t.begin(), t.end());
+        std::rotate(t.begin(), first, t.end());  // keeps the ccw orientation
+    }
+    std::sort(tris.begin(), tris.end());
+    mesh.min_angle_deg = 180.0;
+    for (const auto& t : tris)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double a = OffCenterKernel::angle_at(pts[t[k]], pts[t[(k + 1) % 3]],
+                                                       pts[t[(k + 2) % 3]]);
+            mesh.min_angle_deg = std::min(mesh.min_angle_deg, a * 180.0 / std::numbers::pi);
+        }
+}
+
+}  // namespace detail
 
 double offcenter_min_angle_deg(double rho) {
     return std::asin(1.0 / (2.0 * rho)) * 180.0 / std::numbers::pi;

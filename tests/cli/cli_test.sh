@@ -331,6 +331,13 @@ with open("final.xy", "w") as f:
 PY
     run 0 "$bin" qmesh "$pts" --rho 1.5 --ops ops.txt -o dyn.node --report dyn.json --check --quiet
     [ "$(json_get dyn.json "['ops'].__len__()")" -eq "$(grep -c '^[-+]' ops.txt)" ] || fail "ops not all timed"
+    python3 -c "
+import json
+for o in json.load(open('dyn.json'))['ops']:
+    for k in ('steiner_added', 'steiner_removed', 'simplices_added', 'simplices_removed', 'evaluations'):
+        assert k in o, (k, o)
+    assert o['evaluations'] > 0, o
+" || fail "per-op off-center deltas missing"
     dom=$(python3 -c "import json; d=json.load(open('dyn.json'))['domain']; print(','.join(repr(x) for x in d['origin'] + [d['width']]))")
     run 0 "$bin" qmesh final.xy --rho 1.5 --domain "$dom" -o scratch.node --check --quiet
     cmp -s dyn.node scratch.node || fail "dynamic and from-scratch off-center .node differ"

@@ -164,7 +164,9 @@ void check_bad_input() {
     EXPECT_EQ(dm.erase(nan), EraseResult::NotFound);
     PointD<D> absent = pool[0];
     absent[0] += 1e-3;
-    if (!dm.tree().contains(absent)) EXPECT_EQ(dm.erase(absent), EraseResult::NotFound);
+    if (!dm.tree().contains(absent)) {
+        EXPECT_EQ(dm.erase(absent), EraseResult::NotFound);
+    }
     EXPECT_EQ(dm.simplex_count(), count);
     expect_same_mesh(dm.mesh(), before, "after rejected updates");
     EXPECT_TRUE(dm.check_invariants().empty());

@@ -32,7 +32,8 @@
 ///      open box), the encroached subsegments are split at their midpoints instead and the
 ///      candidate is retried in the next round; else r is inserted.
 ///   4. Output: the Delaunay triangulation of the final vertex set (CGAL
-///      Delaunay_triangulation_2, Epick). No loose pair remains, hence every triangle has
+///      Delaunay_triangulation_2, Epick; degenerate cells canonicalised, see below). No loose
+///      pair remains, hence every triangle has
 ///      circumradius / shortest edge ≤ ρ, i.e. minimum angle ≥ arcsin(1/(2ρ)).
 ///
 /// Resolutions of spec ambiguities (see also the .cpp):
@@ -42,17 +43,26 @@
 ///     slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ radians of the boundary (S = largest |coordinate| of Ω,
 ///     ε = DBL_EPSILON), so that an inserted apex, which carries rounding error, always clears
 ///     its pair. The quality bound therefore holds up to that slack (≈1e-10° for ℓ ≥ 1e-4·W).
-///   * Degenerate (cocircular) configurations: instead of the symbolic perturbation of §5.3.6,
-///     the triangulation is built by inserting the vertices in a canonical sequence (inputs
-///     sorted by grid coordinates, then Steiner points in processing order), which CGAL turns
-///     into the same triangulation every time. The triangle set is thus a function of
-///     (domain, point set, ρ), but for cocircular vertex sets it is not necessarily the
-///     triangulation a different canonical sequence would give.
+///   * Degenerate (cocircular) configurations, instead of the symbolic perturbation of §5.3.6:
+///     (a) where a loose test or an off-center reads "the vertex t opposite pq", and several
+///     vertices on that side are cocircular with p, q (a degenerate Delaunay cell), t is the
+///     lexicographically smallest of them (spec §7.2); (b) in the output, every degenerate
+///     Delaunay cell (a maximal set of triangles sharing one empty circumcircle, found with the
+///     exact incircle test) is re-triangulated as a fan from its smallest output index. Both
+///     make the result a function of the vertex set alone, whatever triangulation CGAL built,
+///     which is what DynOffCenterMesh2 (dyn_offcenter.hpp) relies on to reproduce it exactly.
 ///   * Role of the quadtree: it supplies Ω and the canonical, snapped point set; the pair-length
 ///     classes of §5.3.2 replace Figure 3's cell queues Q_i (spec §5.3.7). The cell-based
 ///     "active point" machinery is not used.
-///   * Dynamic maintenance (spec §5.4 fast mode) is **not** implemented: this is the oracle mode,
-///     a deterministic recomputation from scratch; history independence holds by construction.
+///   * This is the oracle mode of spec §5.4, a deterministic recomputation from scratch; history
+///     independence holds by construction. The dynamic ("fast mode") counterpart is
+///     DynOffCenterMesh2 in dyn_offcenter.hpp, which reproduces this function's output exactly.
+///   * Round structure, stated precisely (DynOffCenterMesh2 relies on it): a candidate found
+///     when its later endpoint v is inserted is processed in round (i, k + 1) if v was inserted
+///     in round k of class i and the candidate's class is ≤ i, else in the first round of its
+///     own class; candidates found initially are processed in the first round of their class;
+///     a retried candidate is processed again in the next round of the same class. (This is
+///     what step 2 does; it only spells it out.)
 ///   * ρ must exceed √2 (spec §5.5 also allows √2 itself; this function, as its issue asks, does
 ///     not): the guarantee of termination and size is the appendix's ρ > √2.
 
@@ -80,7 +90,8 @@ struct OffCenterMesh2 {
     /// Input points (DynQuadtree::points() order, bit-identical), then Steiner points (box
     /// corners, boundary midpoints, off-centers) sorted lexicographically by (x, y).
     std::vector<Vec2> points;
-    /// Counter-clockwise triangles, each rotated to start at its smallest index, sorted.
+    /// Counter-clockwise triangles, each rotated to start at its smallest index, sorted;
+    /// degenerate (cocircular) Delaunay cells are fans from their smallest index.
     std::vector<std::array<std::uint32_t, 3>> triangles;
     /// The vertex of each tree point, in DynQuadtree::points() order (= 0, 1, ..., n-1).
     std::vector<std::uint32_t> input_vertices;
@@ -103,6 +114,52 @@ struct OffCenterMesh2 {
 
 /// The minimum angle (degrees) that radius-edge bound ρ guarantees: arcsin(1/(2ρ)).
 [[nodiscard]] double offcenter_min_angle_deg(double rho);
+
+namespace detail {
+
+/// The numeric kernel shared by offcenter_mesh() and DynOffCenterMesh2, so that both compute
+/// bit-identical off-centers, size classes and loose tests. Not a stable API.
+struct OffCenterKernel {
+    OffCenterKernel(const Vec2& origin, double width, const OffCenterOptions& options);
+
+    Vec2 origin{}, hi{};        // corners of Ω
+    double width = 1;           // W
+    double theta = 0;           // θ_min = arcsin(1/(2ρ))
+    double sigma_apex = 0;      // apex height over pq in units of ℓ: ρ + √(ρ² − ¼)
+    double scale = 1;           // largest |coordinate| of Ω (or W)
+    bool use_offcenters = true;
+
+    /// Angle slack δ(ℓ) of the closed-leaf test (see the file comment).
+    [[nodiscard]] double slack(double len2) const;
+    /// ⌊lg(ℓ / W)⌋ for ℓ² = len2.
+    [[nodiscard]] int size_class(double len2) const;
+    /// The point at coordinate c along box side `side` (0 bottom, 1 right, 2 top, 3 left).
+    [[nodiscard]] Vec2 side_point(int side, double c) const;
+    /// The coordinate of p along box side `side` (x for even sides, y for odd ones).
+    [[nodiscard]] static double along(int side, const Vec2& p);
+    /// Angle ∠ptq in radians.
+    [[nodiscard]] static double angle_at(const Vec2& t, const Vec2& p, const Vec2& q);
+    /// True when t, on the tested side of pq, lies in the closed leaf (∠ptq ≥ θ − δ).
+    [[nodiscard]] bool in_leaf_same_side(const Vec2& t, const Vec2& lo, const Vec2& hi,
+                                         double len2) const;
+    /// True when u, on the other side of pq, lies in the closed leaf (∠puq ≥ π − θ − δ).
+    [[nodiscard]] bool in_leaf_other_side(const Vec2& u, const Vec2& lo, const Vec2& hi,
+                                          double len2) const;
+    /// The off-center of the pair (lo, hi) on side cw (false: ccw of lo → hi) whose canonical
+    /// opposite vertex on that side is t; `apex` tells whether the leaf apex was used.
+    [[nodiscard]] Vec2 offcenter(const Vec2& lo, const Vec2& hi, bool cw, double len2,
+                                 const Vec2& t, bool& apex) const;
+    /// The leaf apex of (lo, hi) on side cw: what offcenter() returns when `apex` is set.
+    [[nodiscard]] Vec2 apex_point(const Vec2& lo, const Vec2& hi, bool cw) const;
+};
+
+/// Finishes an OffCenterMesh2 whose points (inputs first) and counter-clockwise Delaunay
+/// triangles are set: re-triangulates every degenerate Delaunay cell as a fan from its
+/// smallest index, rotates each triangle to start at its smallest index, sorts the triangles
+/// and sets min_angle_deg. The result depends on the vertex set only.
+void finish_offcenter_mesh(OffCenterMesh2& mesh);
+
+}  // namespace detail
 
 /// Every violated property, one message each; empty when valid: indices in range, every triangle
 /// counter-clockwise (exact orient2d), every edge shared by two oppositely oriented triangles or

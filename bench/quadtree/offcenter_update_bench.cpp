@@ -1,0 +1,223 @@
+/// Cost of one update of the dynamic off-center refinement (DynOffCenterMesh2, spec §5.4 and
+/// §6.1) against recomputing from scratch, in the same run and on the same points:
+///   * BM_DynUpdate: one iteration inserts a random point and erases it again (two updates,
+///     state restored); counters: microseconds per update, Steiner points changed per update,
+///     evaluations re-run per update;
+///   * BM_StaticRecompute: offcenter_mesh() of the whole point set (the oracle mode, which is
+///     what an update costs without the dynamic structure);
+///   * BM_CgalRemesh: CGAL's 2D Delaunay mesher on the same points and box
+///     (refine_Delaunay_mesh_2, Delaunay_mesh_size_criteria_2(0.125), i.e. about 20.7 degrees).
+/// Inputs: n = 1e3, 1e4, 1e5 points, uniform and clustered (20 Gaussian blobs of sigma 0.01, as
+/// quadtree_bench), in the middle third of the unit box; rho = 1.5. A summary table with the
+/// ratios recompute / update follows Google Benchmark's output.
+/// Options: --benchmark_filter etc. as usual; DYNMESH_OFFCENTER_UPDATE_MAX_N (default 100000)
+/// caps n.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <benchmark/benchmark.h>
+
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/dyn_offcenter.hpp"
+#include "dynmesh/quadtree/offcenter.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+#include "recording_reporter.hpp"
+
+namespace {
+
+using namespace dynmesh;
+
+constexpr double kRho = 1.5;
+
+struct Case {
+    std::string name;
+    std::size_t n = 0;
+    bool clustered = false;
+};
+std::vector<Case> g_cases;
+
+/// n points in [0.34, 0.66]^2; clustered = 20 Gaussian blobs of sigma 0.01 (as quadtree_bench).
+std::vector<Vec2> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Vec2> centres(20);
+    for (auto& c : centres) c = {rng.uniform(0.4, 0.6), rng.uniform(0.4, 0.6)};
+    std::vector<Vec2> pts(n);
+    for (auto& p : pts) {
+        const Vec2& c = centres[rng.below(centres.size())];
+        if (clustered)
+            p = {std::clamp(c.x + 0.01 * rng.normal(), 0.34, 0.66),
+                 std::clamp(c.y + 0.01 * rng.normal(), 0.34, 0.66)};
+        else
+            p = {rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)};
+    }
+    return pts;
+}
+
+/// The distinct points of a case (in the order generated), and their dynamic mesh.
+struct Fixture {
+    std::vector<Vec2> points;
+    std::vector<Vec2> queries;  // same distribution, seed 2
+    std::unique_ptr<DynOffCenterMesh2> dyn;
+    double build_seconds = 0;
+};
+
+Fixture& fixture(std::size_t i) {
+    static std::map<std::size_t, Fixture> cache;
+    auto it = cache.find(i);
+    if (it != cache.end()) return it->second;
+    Fixture f;
+    const Case& c = g_cases[i];
+    DynQuadtree<2> probe;
+    for (const Vec2& p : make_points(c.n, c.clustered, 1))
+        if (probe.insert(p) == InsertResult::Inserted) f.points.push_back(p);
+    f.queries = make_points(4096, c.clustered, 2);
+    const auto t0 = std::chrono::steady_clock::now();
+    f.dyn =
+        std::make_unique<DynOffCenterMesh2>(DynOffCenterMesh2::build(f.points, {}, {.rho = kRho}));
+    f.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Warm-up (not timed): the first updates after a large build pay one-off allocator costs.
+    for (std::size_t k = 0; k < 8; ++k) {
+        const Vec2 q{0.34 + 0.04 * double(k), 0.5 + 1e-7 * double(k)};
+        if (f.dyn->insert(q) == InsertResult::Inserted) (void)f.dyn->erase(q);
+    }
+    return cache.emplace(i, std::move(f)).first->second;
+}
+
+void BM_DynUpdate(benchmark::State& state) {
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+    std::size_t i = 0, updates = 0, changed = 0, evaluations = 0, rounds = 0, queries = 0;
+    for (auto _ : state) {
+        const Vec2& q = f.queries[i++ % f.queries.size()];
+        if (f.dyn->insert(q) != InsertResult::Inserted) continue;
+        const OffCenterUpdateReport a = f.dyn->last_update();
+        if (f.dyn->erase(q) != EraseResult::Erased) state.SkipWithError("erase failed");
+        const OffCenterUpdateReport& b = f.dyn->last_update();
+        updates += 2;
+        changed += a.steiner_added + a.steiner_removed + b.steiner_added + b.steiner_removed;
+        evaluations += a.evaluations + b.evaluations;
+        rounds += a.rounds_visited + b.rounds_visited;
+        queries += a.queries + b.queries;
+    }
+    const double u = double(std::max<std::size_t>(updates, 1));
+    state.counters["updates_per_iteration"] =
+        double(updates) / double(std::max<std::size_t>(state.iterations(), 1));
+    state.counters["steiner_changed_per_update"] = double(changed) / u;
+    state.counters["evaluations_per_update"] = double(evaluations) / u;
+    state.counters["rounds_per_update"] = double(rounds) / u;
+    state.counters["queries_per_update"] = double(queries) / u;
+    state.counters["vertices"] = double(f.dyn->vertex_count());
+    state.counters["n"] = double(f.points.size());
+    state.counters["build_s"] = f.build_seconds;
+}
+
+void BM_StaticRecompute(benchmark::State& state) {
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+    std::size_t vertices = 0;
+    for (auto _ : state) {
+        const OffCenterMesh2 mesh = offcenter_mesh(f.dyn->tree(), {.rho = kRho});
+        vertices = mesh.points.size();
+        benchmark::DoNotOptimize(mesh.triangles.data());
+    }
+    state.counters["vertices"] = double(vertices);
+}
+
+void BM_CgalRemesh(benchmark::State& state) {
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Vb = CGAL::Triangulation_vertex_base_2<K>;
+    using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+    using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
+    using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+    std::size_t vertices = 0;
+    for (auto _ : state) {
+        CDT cdt;
+        const auto a = cdt.insert(K::Point_2(0, 0)), b = cdt.insert(K::Point_2(1, 0)),
+                   c = cdt.insert(K::Point_2(1, 1)), d = cdt.insert(K::Point_2(0, 1));
+        cdt.insert_constraint(a, b);
+        cdt.insert_constraint(b, c);
+        cdt.insert_constraint(c, d);
+        cdt.insert_constraint(d, a);
+        for (const Vec2& p : f.points) cdt.insert(K::Point_2(p.x, p.y));
+        CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125));  // B = sqrt(2) <=> about 20.7 deg
+        vertices = cdt.number_of_vertices();
+        benchmark::DoNotOptimize(vertices);
+    }
+    state.counters["vertices"] = double(vertices);
+}
+
+void print_summary(const dynmesh::bench::RecordingReporter& rep) {
+    const auto& dyn = rep.runs("BM_DynUpdate");
+    const auto& stat = rep.runs("BM_StaticRecompute");
+    const auto& cgal = rep.runs("BM_CgalRemesh");
+    std::printf(
+        "\nOne update of DynOffCenterMesh2 (rho = %.3g) vs recomputing: static offcenter_mesh() "
+        "and CGAL refine_Delaunay_mesh_2 (B = sqrt 2)\n",
+        kRho);
+    std::printf("%-16s %7s %8s | %10s %9s %9s %7s | %11s %11s | %9s %9s | %7s\n", "input", "n",
+                "verts", "us/update", "steiner/u", "evals/u", "rnds/u", "static ms", "cgal ms",
+                "static/u", "cgal/u", "build s");
+    for (std::size_t i = 0; i < g_cases.size(); ++i) {
+        const auto d = dyn.find(i);
+        if (d == dyn.end()) continue;
+        const double per =
+            d->second.seconds / std::max(d->second.counter("updates_per_iteration", 2.0), 1e-300);
+        std::printf("%-16s %7.0f %8.0f | %10.2f %9.2f %9.1f %7.1f |", g_cases[i].name.c_str(),
+                    d->second.counter("n"), d->second.counter("vertices"), per * 1e6,
+                    d->second.counter("steiner_changed_per_update"),
+                    d->second.counter("evaluations_per_update"),
+                    d->second.counter("rounds_per_update"));
+        const auto s = stat.find(i);
+        const auto c = cgal.find(i);
+        std::printf(" %11.2f %11.2f |", s != stat.end() ? s->second.seconds * 1e3 : 0.0,
+                    c != cgal.end() ? c->second.seconds * 1e3 : 0.0);
+        std::printf(" %9.0f %9.0f | %7.2f\n", s != stat.end() ? s->second.seconds / per : 0.0,
+                    c != cgal.end() ? c->second.seconds / per : 0.0, d->second.counter("build_s"));
+    }
+    std::printf(
+        "static/u, cgal/u: recompute time / one dynamic update (the speed-up of the dynamic "
+        "update).\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::size_t max_n = 100000;
+    if (const char* e = std::getenv("DYNMESH_OFFCENTER_UPDATE_MAX_N"))
+        max_n = std::strtoull(e, nullptr, 10);
+    for (bool clustered : {false, true})
+        for (std::size_t n : {1000u, 10000u, 100000u})
+            if (n <= max_n)
+                g_cases.push_back(
+                    {std::string(clustered ? "clustered" : "uniform") + "-" + std::to_string(n), n,
+                     clustered});
+    for (std::size_t i = 0; i < g_cases.size(); ++i) {
+        const auto arg = static_cast<std::int64_t>(i);
+        benchmark::RegisterBenchmark("BM_DynUpdate", BM_DynUpdate)
+            ->Arg(arg)
+            ->MinTime(0.3)
+            ->Unit(benchmark::kMicrosecond);
+        const int reps = g_cases[i].n >= 100000 ? 1 : 3;
+        benchmark::RegisterBenchmark("BM_StaticRecompute", BM_StaticRecompute)
+            ->Arg(arg)
+            ->Iterations(reps)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark("BM_CgalRemesh", BM_CgalRemesh)
+            ->Arg(arg)
+            ->Iterations(reps)
+            ->Unit(benchmark::kMillisecond);
+    }
+    return dynmesh::bench::run_benchmarks(argc, argv, print_summary);
+}
