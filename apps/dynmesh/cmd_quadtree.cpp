@@ -1,7 +1,7 @@
 /// `dynmesh qmesh` (alias `quadtree`): a balanced quadtree (2D) or octree (3D) over a point set,
 /// updated by an insert/erase script, and the quality simplicial mesh derived from it
-/// (shared/specs/dynamic-quadtree.md §1–§4): triangles by quad_mesh() or, with --rho, by the
-/// off-center mesher in 2D; tetrahedra by oct_mesh() in 3D.
+/// (shared/specs/dynamic-quadtree.md §1–§5), maintained through the script: triangles or
+/// tetrahedra by DynQuadMesh, or, with --rho in 2D, the off-center mesh by DynOffCenterMesh2.
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -688,7 +688,7 @@ void register_quadtree(CLI::App& root, int& result) {
         sub->add_option("--rho", args->rho,
                         "2D only: off-center (Har-Peled-Ungor) Delaunay mesh with radius-edge "
                         "ratio <= RHO (> sqrt(2); sqrt(2) ~ 20.7 deg) instead of the quadtree "
-                        "postprocess")
+                        "postprocess, maintained through --ops like it")
             ->check(finite_number());
     sub->add_option("--domain", args->domain,
                     "Domain box 'X0,Y0,W' (2D) or 'X0,Y0,Z0,W' (3D); every point must lie in "
