@@ -8,11 +8,6 @@
 /// shared/data/planar/ (vertices only; scaled into the middle third of the unit box).
 /// Prints a table: vertices, Steiner points (vertices − inputs, box corners included) and the
 /// measured minimum angle for each method, and the ratio off-center / CGAL.
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesher_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -33,6 +28,7 @@
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quad_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "bench_inputs.hpp"
 #include "recording_reporter.hpp"
 
 #ifndef DYNMESH_PLANAR_DATA_DIR
@@ -61,22 +57,6 @@ double min_angle_deg(const Vec2& a, const Vec2& b, const Vec2& c) {
     return m;
 }
 
-/// n points in [0.34, 0.66]^2; clustered = 20 Gaussian blobs of sigma 0.01 (as quadtree_bench).
-std::vector<Vec2> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
-    Rng rng(seed);
-    std::vector<Vec2> centres(20);
-    for (auto& c : centres) c = {rng.uniform(0.4, 0.6), rng.uniform(0.4, 0.6)};
-    std::vector<Vec2> pts(n);
-    for (auto& p : pts) {
-        const Vec2& c = centres[rng.below(centres.size())];
-        if (clustered)
-            p = {std::clamp(c.x + 0.01 * rng.normal(), 0.34, 0.66),
-                 std::clamp(c.y + 0.01 * rng.normal(), 0.34, 0.66)};
-        else
-            p = {rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)};
-    }
-    return pts;
-}
 
 /// The vertices of a planar file: read_point_set() for .node and one-point-per-line files; the
 /// node section of a .poly, and the segment end points of an .edg, by a small parser.
@@ -164,28 +144,14 @@ void BM_OffCenterHPU(benchmark::State& s) { BM_OffCenter(s, true); }
 void BM_CircumcentreOnly(benchmark::State& s) { BM_OffCenter(s, false); }
 
 void BM_CgalMesher(benchmark::State& state) {
-    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-    using Vb = CGAL::Triangulation_vertex_base_2<K>;
-    using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
-    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-    using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
-    using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
     const auto& tree = tree_of(static_cast<std::size_t>(state.range(0)));
-    const auto pts = tree.points();
+    std::vector<Vec2> pts;
+    for (const auto& e : tree.points()) pts.push_back(e.second);
     std::size_t vertices = 0;
     double min_angle = 180;
     for (auto _ : state) {
-        CDT cdt;
-        const Vec2 o = tree.options().origin;
-        const double w = tree.options().width;
-        const auto a = cdt.insert(K::Point_2(o.x, o.y)), b = cdt.insert(K::Point_2(o.x + w, o.y)),
-                   c = cdt.insert(K::Point_2(o.x + w, o.y + w)), d = cdt.insert(K::Point_2(o.x, o.y + w));
-        cdt.insert_constraint(a, b);
-        cdt.insert_constraint(b, c);
-        cdt.insert_constraint(c, d);
-        cdt.insert_constraint(d, a);
-        for (const auto& e : pts) cdt.insert(K::Point_2(e.second.x, e.second.y));
-        CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125));  // B = sqrt(2) <=> about 20.7 deg
+        const bench::CgalMeshCdt cdt =
+            bench::cgal_refine_box(tree.options().origin, tree.options().width, pts);
         vertices = cdt.number_of_vertices();
         min_angle = 180;
         for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
@@ -247,7 +213,7 @@ int main(int argc, char** argv) {
     for (bool clustered : {false, true})
         for (std::size_t n : {100u, 1000u, 10000u}) {
             Case c{std::string(clustered ? "clustered" : "uniform") + "-" + std::to_string(n),
-                   make_points(n, clustered, 1)};
+                   bench::make_points<2>(n, clustered, 1)};
             c.points = distinct(c.points);
             g_cases.push_back(std::move(c));
         }

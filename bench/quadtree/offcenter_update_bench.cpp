@@ -22,17 +22,13 @@
 #include <string>
 #include <vector>
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesher_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <benchmark/benchmark.h>
 
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/dyn_offcenter.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "bench_inputs.hpp"
 #include "recording_reporter.hpp"
 
 namespace {
@@ -48,22 +44,6 @@ struct Case {
 };
 std::vector<Case> g_cases;
 
-/// n points in [0.34, 0.66]^2; clustered = 20 Gaussian blobs of sigma 0.01 (as quadtree_bench).
-std::vector<Vec2> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
-    Rng rng(seed);
-    std::vector<Vec2> centres(20);
-    for (auto& c : centres) c = {rng.uniform(0.4, 0.6), rng.uniform(0.4, 0.6)};
-    std::vector<Vec2> pts(n);
-    for (auto& p : pts) {
-        const Vec2& c = centres[rng.below(centres.size())];
-        if (clustered)
-            p = {std::clamp(c.x + 0.01 * rng.normal(), 0.34, 0.66),
-                 std::clamp(c.y + 0.01 * rng.normal(), 0.34, 0.66)};
-        else
-            p = {rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)};
-    }
-    return pts;
-}
 
 /// The distinct points of a case (in the order generated), and their dynamic mesh.
 struct Fixture {
@@ -80,9 +60,9 @@ Fixture& fixture(std::size_t i) {
     Fixture f;
     const Case& c = g_cases[i];
     DynQuadtree<2> probe;
-    for (const Vec2& p : make_points(c.n, c.clustered, 1))
+    for (const Vec2& p : bench::make_points<2>(c.n, c.clustered, 1))
         if (probe.insert(p) == InsertResult::Inserted) f.points.push_back(p);
-    f.queries = make_points(4096, c.clustered, 2);
+    f.queries = bench::make_points<2>(4096, c.clustered, 2);
     const auto t0 = std::chrono::steady_clock::now();
     f.dyn =
         std::make_unique<DynOffCenterMesh2>(DynOffCenterMesh2::build(f.points, {}, {.rho = kRho}));
@@ -134,25 +114,10 @@ void BM_StaticRecompute(benchmark::State& state) {
 }
 
 void BM_CgalRemesh(benchmark::State& state) {
-    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-    using Vb = CGAL::Triangulation_vertex_base_2<K>;
-    using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
-    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-    using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
-    using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
     Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
     std::size_t vertices = 0;
     for (auto _ : state) {
-        CDT cdt;
-        const auto a = cdt.insert(K::Point_2(0, 0)), b = cdt.insert(K::Point_2(1, 0)),
-                   c = cdt.insert(K::Point_2(1, 1)), d = cdt.insert(K::Point_2(0, 1));
-        cdt.insert_constraint(a, b);
-        cdt.insert_constraint(b, c);
-        cdt.insert_constraint(c, d);
-        cdt.insert_constraint(d, a);
-        for (const Vec2& p : f.points) cdt.insert(K::Point_2(p.x, p.y));
-        CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125));  // B = sqrt(2) <=> about 20.7 deg
-        vertices = cdt.number_of_vertices();
+        vertices = bench::cgal_refine_box({0, 0}, 1.0, f.points).number_of_vertices();
         benchmark::DoNotOptimize(vertices);
     }
     state.counters["vertices"] = double(vertices);

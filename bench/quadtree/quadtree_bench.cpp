@@ -4,11 +4,6 @@
 /// rebuilding a quality mesh of the same points with CGAL's 2D Delaunay mesher
 /// (refine_Delaunay_mesh_2, B = sqrt(2), about 20.7 degrees) in the same run. Prints
 /// per-update times, simplices changed per update and the rebuild/update ratio.
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesher_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -20,27 +15,13 @@
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "bench_inputs.hpp"
 #include "recording_reporter.hpp"
 
 namespace {
 
 using namespace dynmesh;
-
-/// n points in the middle third of the unit box; clustered = 20 tight Gaussian blobs.
-template <int D>
-std::vector<PointD<D>> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
-    Rng rng(seed);
-    std::vector<PointD<D>> centres(20);
-    for (auto& c : centres)
-        for (int k = 0; k < D; ++k) c[k] = rng.uniform(0.4, 0.6);
-    std::vector<PointD<D>> pts(n);
-    for (auto& p : pts) {
-        const auto& c = centres[rng.below(centres.size())];
-        for (int k = 0; k < D; ++k)
-            p[k] = clustered ? std::clamp(c[k] + 0.01 * rng.normal(), 0.34, 0.66) : rng.uniform(0.34, 0.66);
-    }
-    return pts;
-}
+using bench::make_points;
 
 /// A structure built over n points, and points not in it to insert and erase again.
 template <class Engine>
@@ -130,25 +111,10 @@ void BM_MeshUpdate3D_Uniform(benchmark::State& s) { BM_Update<DynQuadMesh<3>, 3>
 void BM_MeshUpdate3D_Clustered(benchmark::State& s) { BM_Update<DynQuadMesh<3>, 3>(s, true); }
 
 void BM_CgalMesher2D_Rebuild(benchmark::State& state) {
-    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-    using Vb = CGAL::Triangulation_vertex_base_2<K>;
-    using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
-    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-    using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
-    using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
     const auto pts = make_points<2>(static_cast<std::size_t>(state.range(0)), false, 1);
     std::size_t vertices = 0;
     for (auto _ : state) {
-        CDT cdt;
-        const auto a = cdt.insert(K::Point_2(0, 0)), b = cdt.insert(K::Point_2(1, 0)),
-                   c = cdt.insert(K::Point_2(1, 1)), d = cdt.insert(K::Point_2(0, 1));
-        cdt.insert_constraint(a, b);
-        cdt.insert_constraint(b, c);
-        cdt.insert_constraint(c, d);
-        cdt.insert_constraint(d, a);
-        for (const auto& p : pts) cdt.insert(K::Point_2(p.x, p.y));
-        CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125));  // B = sqrt(2) <=> about 20.7 deg
-        vertices = cdt.number_of_vertices();
+        vertices = bench::cgal_refine_box({0, 0}, 1.0, pts).number_of_vertices();
         benchmark::DoNotOptimize(vertices);
     }
     state.counters["mesh_vertices"] = double(vertices);

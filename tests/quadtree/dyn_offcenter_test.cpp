@@ -15,15 +15,12 @@
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "quadtree_fixtures.hpp"
 
 namespace dynmesh {
 namespace {
+using testing_quadtree::joined;
 
-std::string joined(const std::vector<std::string>& v) {
-    std::string s;
-    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += v[i] + "\n";
-    return s;
-}
 
 /// A point pool in the middle third of [o, o + w]^2 for one input family.
 enum class Family { Uniform, Clustered, NearDuplicates, Circle };

@@ -12,15 +12,12 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
+#include "quadtree_fixtures.hpp"
 
 namespace dynmesh {
 namespace {
+using testing_quadtree::joined;
 
-std::string joined(const std::vector<std::string>& v) {
-    std::string s;
-    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += v[i] + "\n";
-    return s;
-}
 
 /// Uniform points in the middle third of [o, o + w]^2.
 std::vector<Vec2> uniform_points(std::size_t n, std::uint64_t seed, Vec2 o = {}, double w = 1) {

@@ -1,0 +1,60 @@
+#pragma once
+/// \file Inputs and the CGAL baseline shared by the quadtree benchmarks.
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/quadtree.hpp"
+
+namespace dynmesh::bench {
+
+/// n points in the middle third [0.34, 0.66]^D of the unit box; clustered = 20 Gaussian blobs
+/// of sigma 0.01 centred in [0.4, 0.6]^D.
+template <int D>
+std::vector<PointD<D>> make_points(std::size_t n, bool clustered, std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<PointD<D>> centres(20);
+    for (auto& c : centres)
+        for (int k = 0; k < D; ++k) c[k] = rng.uniform(0.4, 0.6);
+    std::vector<PointD<D>> pts(n);
+    for (auto& p : pts) {
+        const auto& c = centres[rng.below(centres.size())];
+        for (int k = 0; k < D; ++k)
+            p[k] = clustered ? std::clamp(c[k] + 0.01 * rng.normal(), 0.34, 0.66)
+                             : rng.uniform(0.34, 0.66);
+    }
+    return pts;
+}
+
+using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using CgalMeshCdt = CGAL::Constrained_Delaunay_triangulation_2<
+    CgalKernel, CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<CgalKernel>,
+                                                     CGAL::Delaunay_mesh_face_base_2<CgalKernel>>>;
+
+/// The baseline: CGAL's 2D Delaunay mesher (refine_Delaunay_mesh_2 with
+/// Delaunay_mesh_size_criteria_2(0.125), i.e. B = √2, about 20.7°, no size bound) on the box
+/// [origin, origin + width]^2 with its sides as constraints and the points inserted.
+template <class Points>
+CgalMeshCdt cgal_refine_box(const Vec2& origin, double width, const Points& points) {
+    CgalMeshCdt cdt;
+    using P = CgalKernel::Point_2;
+    const auto a = cdt.insert(P(origin.x, origin.y)), b = cdt.insert(P(origin.x + width, origin.y)),
+               c = cdt.insert(P(origin.x + width, origin.y + width)),
+               d = cdt.insert(P(origin.x, origin.y + width));
+    cdt.insert_constraint(a, b);
+    cdt.insert_constraint(b, c);
+    cdt.insert_constraint(c, d);
+    cdt.insert_constraint(d, a);
+    for (const Vec2& p : points) cdt.insert(P(p.x, p.y));
+    CGAL::refine_Delaunay_mesh_2(cdt, CGAL::Delaunay_mesh_size_criteria_2<CgalMeshCdt>(0.125));
+    return cdt;
+}
+
+}  // namespace dynmesh::bench
