@@ -82,6 +82,11 @@ int holds_bit() {
     return star_bit<D>() + 1 + D;
 }
 
+/// Point leaves at or below this level (smaller than 2 input quanta) place their point at its
+/// grid position instead of its input coordinates (see assemble()).
+template <int D>
+constexpr int kSnapLevel = DynQuadtree<D>::kGuardBits;
+
 template <int D>
 std::string cell_name(const CellId<D>& c) {
     std::string s = "cell (level " + std::to_string(c.level) + ";";
@@ -219,7 +224,11 @@ AssembledMesh<D> assemble(const DynQuadtree<D>& tree,
             const auto pts = tree.leaf_points(leaf);
             DYNMESH_ASSERT(pts.size() == 1, "assemble: a point leaf without its point");
             const Lattice<D> v = code_apex<D>(leaf, code);
-            warped.emplace_back(v, pts[0].point);
+            // Inputs lie within one quantum (2^kGuardBits units) above their grid point. In a
+            // leaf of at least 2 quanta that keeps the point in the leaf's half towards v, the
+            // region the star analysis assumes; in a smaller leaf (points within about two
+            // quanta of each other) the grid point equals v and is used instead.
+            if (leaf.level > kSnapLevel<D>) warped.emplace_back(v, pts[0].point);
             inputs.emplace_back(pts[0].grid, v);
         }
     }
@@ -257,17 +266,37 @@ AssembledMesh<D> assemble(const DynQuadtree<D>& tree,
             out.points.push_back(p);
         }
     }
+    // Orientation: the sign of each simplex at the lattice positions (exact: lattice
+    // coordinates are integers below 2^53) decides the vertex order; the simplex at the real
+    // positions (warped corners moved onto their points) must have the same sign.
+    const auto sign_of = [](const auto& a, const auto& b, const auto& c, const auto& d) {
+        if constexpr (D == 2)
+            return orient2d(a, b, c);
+        else
+            return orient3d(a, b, c, d);
+    };
+    const auto lattice_point = [](const Lattice<D>& k) {
+        Point p;
+        for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] = static_cast<double>(k[d]);
+        return p;
+    };
     out.simplices.reserve(simplices.size());
     for (const auto& t : simplices) {
         std::array<std::uint32_t, D + 1> s{};
-        for (int i = 0; i <= D; ++i) s[i] = index(t[i]);
-        Sign o;
-        if constexpr (D == 2)
-            o = orient2d(out.points[s[0]], out.points[s[1]], out.points[s[2]]);
-        else
-            o = orient3d(out.points[s[0]], out.points[s[1]], out.points[s[2]], out.points[s[3]]);
-        if (o == Sign::Zero) throw InternalError("quadtree mesh: a flat simplex");
-        if (o == Sign::Negative) std::swap(s[D - 1], s[D]);
+        std::array<Point, D + 1> lat;
+        for (int i = 0; i <= D; ++i) {
+            s[i] = index(t[i]);
+            lat[i] = lattice_point(t[i]);
+        }
+        const Sign want = sign_of(lat[0], lat[1], lat[2], lat[D]);
+        if (want == Sign::Zero) throw InternalError("quadtree mesh: a flat simplex");
+        if (D == 2 && want == Sign::Negative)
+            throw InternalError("quadtree mesh: a clockwise triangle in the construction");
+        if (want == Sign::Negative) std::swap(s[D - 1], s[D]);
+        const auto& P = out.points;
+        if (sign_of(P[s[0]], P[s[1]], P[s[2]], P[s[D]]) != Sign::Positive)
+            throw InternalError(
+                "quadtree mesh: warping an input point inverted or flattened a simplex");
         out.simplices.push_back(s);
     }
     std::sort(inputs.begin(), inputs.end());

@@ -35,6 +35,25 @@ void expect_same_mesh(const M& a, const M& b, const std::string& what) {
     EXPECT_EQ(a.leaves, b.leaves) << what;
 }
 
+/// Every input point is a vertex: at its own coordinates, or at its grid position when its
+/// leaf is smaller than two input quanta (points within about two quanta of another).
+template <int D, class M>
+void expect_input_vertices(const DynQuadtree<D>& tree, const M& mesh, const std::string& what) {
+    const auto pts = tree.points();
+    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
+    const double unit = tree.options().width * 0x1p-52;
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+        const auto& [g, p] = pts[j];
+        PointD<D> want = p;
+        if (tree.leaf_containing(g).level <= DynQuadtree<D>::kGuardBits)
+            for (int d = 0; d < D; ++d) {
+                const auto ud = static_cast<std::size_t>(d);
+                want[ud] = tree.options().origin[ud] + static_cast<double>(g[ud]) * unit;
+            }
+        ASSERT_EQ(mesh.points[mesh.input_vertices[j]], want) << what << " input " << j;
+    }
+}
+
 /// Random insert/erase sequences. After every `every`-th operation: the dynamic mesh equals
 /// the from-scratch mesh of the current point set (paper-mode tree → quad_mesh / oct_mesh,
 /// an independent path through DynQuadtree::build), its invariants hold, the maintained
@@ -80,11 +99,7 @@ void run_sequences(std::uint64_t seed, int sequences, int every) {
             ASSERT_EQ(simplices_of(got).size(), dm.simplex_count()) << what;
             const auto invalid = check_mesh(got);
             ASSERT_TRUE(invalid.empty()) << what << ":\n" << joined(invalid);
-            // Every input point is a vertex, at its own coordinates.
-            const auto pts = dm.tree().points();
-            ASSERT_EQ(got.input_vertices.size(), pts.size()) << what;
-            for (std::size_t j = 0; j < pts.size(); ++j)
-                ASSERT_EQ(got.points[got.input_vertices[j]], pts[j].second) << what;
+            expect_input_vertices(dm.tree(), got, what);
         }
     }
 }
@@ -93,6 +108,56 @@ TEST(DynQuadMesh, MatchesFromScratchAfterEveryUpdate2D) { run_sequences<2>(51, 8
 TEST(DynQuadMesh, MatchesFromScratchAfterEveryUpdate3D) { run_sequences<3>(52, 6, 1); }
 TEST(DynQuadMesh, MatchesFromScratchManySequences2D) { run_sequences<2>(53, 500, 8); }
 TEST(DynQuadMesh, MatchesFromScratchManySequences3D) { run_sequences<3>(54, 50, 10); }
+
+/// Points a few input quanta apart (the finest the grid resolves): leaves down to a quarter
+/// of a quantum, inputs up to a quantum away from their grid point. Static and dynamic meshes
+/// agree, are valid and keep the angle bounds.
+template <int D>
+void check_quantum_clusters(std::uint64_t seed, int clusters) {
+    Rng rng(seed);
+    const double q = std::ldexp(1.0, -49) * 1.0000001;  // just over one quantum (unit domain)
+    std::size_t small_leaves = 0;
+    for (int t = 0; t < clusters; ++t) {
+        PointD<D> c;
+        for (int d = 0; d < D; ++d) c[static_cast<std::size_t>(d)] = rng.uniform(0.4, 0.6);
+        const auto spread = static_cast<std::int64_t>(3 + rng.below(40));
+        std::vector<PointD<D>> pts;
+        std::set<typename DynQuadtree<D>::GridPoint> seen;
+        const DynQuadtree<D> probe;
+        const std::size_t n = 2 + rng.below(5);
+        while (pts.size() < n) {
+            PointD<D> p = c;
+            for (int d = 0; d < D; ++d)
+                p[static_cast<std::size_t>(d)] +=
+                    static_cast<double>(static_cast<std::int64_t>(rng.below(spread)) - spread / 2) * q;
+            if (seen.insert(probe.grid_point(p)).second) pts.push_back(p);
+        }
+        DynQuadMesh<D> dm;
+        for (const auto& p : pts) ASSERT_EQ(dm.insert(p), InsertResult::Inserted);
+        ASSERT_EQ(dm.erase(pts[0]), EraseResult::Erased);
+        ASSERT_EQ(dm.insert(pts[0]), InsertResult::Inserted);
+        const std::string what = "cluster " + std::to_string(t);
+        const auto got = dm.mesh();
+        expect_same_mesh(got, static_mesh(DynQuadtree<D>::build(pts)), what);
+        const auto invalid = check_mesh(got);
+        ASSERT_TRUE(invalid.empty()) << what << ":\n" << joined(invalid);
+        expect_input_vertices(dm.tree(), got, what);
+        if constexpr (D == 2) {
+            const AngleRangeDeg a = angle_range_deg(got);
+            EXPECT_GE(a.min, kQuadMeshMinAngleDeg - 1e-6) << what;
+            EXPECT_LE(a.max, kQuadMeshMaxAngleDeg + 1e-6) << what;
+        } else {
+            const DihedralRangeDeg a = dihedral_range_deg(got);
+            EXPECT_GE(a.min, kOctMeshMinDihedralDeg) << what;
+            EXPECT_LE(a.max, kOctMeshMaxDihedralDeg) << what;
+        }
+        for (const auto& [g, p] : dm.tree().points())
+            small_leaves += dm.tree().leaf_containing(g).level <= DynQuadtree<D>::kGuardBits;
+    }
+    EXPECT_GT(small_leaves, 0u) << "the family never reached leaves below two quanta";
+}
+TEST(DynQuadMesh, PointsAFewQuantaApart2D) { check_quantum_clusters<2>(71, 400); }
+TEST(DynQuadMesh, PointsAFewQuantaApart3D) { check_quantum_clusters<3>(72, 15); }
 
 TEST(DynQuadMesh, EmptyMeshCoversTheDomain) {
     const DynQuadMesh<2> m2;

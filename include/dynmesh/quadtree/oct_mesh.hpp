@@ -57,7 +57,10 @@ struct OctMesh3 {
     Vec3 origin{};  // the tree's domain box
     double width = 1.0;
     /// Vertices sorted by lattice key (grid coordinates): leaf corners, facet centres and cell
-    /// centres at their lattice positions, warped corners at their input point (bit-identical).
+    /// centres at their lattice positions, warped corners at their input point (bit-identical), except
+    /// in a point leaf smaller than two input quanta (2^(kGuardBits+1) grid units: points within
+    /// about W·2^-48 of each other), where the point sits at its grid position (within one
+    /// quantum W·2^-49 of the input), which keeps every simplex positively oriented.
     std::vector<Point3> points;
     /// Positively oriented tetrahedra (orient3d(p0, p1, p2, p3) > 0, exact), in leaf order.
     std::vector<std::array<std::uint32_t, 4>> tets;

@@ -39,7 +39,10 @@ struct QuadMesh2 {
     Vec2 origin{};  // the tree's domain box
     double width = 1.0;
     /// Vertices sorted by lattice key (grid coordinates): leaf corners and cell centres at
-    /// their lattice positions, warped corners at their input point (bit-identical).
+    /// their lattice positions, warped corners at their input point (bit-identical), except
+    /// in a point leaf smaller than two input quanta (2^(kGuardBits+1) grid units: points within
+    /// about W·2^-48 of each other), where the point sits at its grid position (within one
+    /// quantum W·2^-49 of the input), which keeps every simplex positively oriented.
     std::vector<Vec2> points;
     /// Counter-clockwise triangles (indices into points), in leaf order.
     std::vector<std::array<std::uint32_t, 3>> triangles;
