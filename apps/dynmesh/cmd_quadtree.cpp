@@ -11,6 +11,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -373,45 +377,84 @@ std::filesystem::path plot_script() {
 #endif
 }
 
-/// Draws two 2D meshes side by side into `png` (written atomically): the meshes go to
-/// before.node/.ele and after.node/.ele in a private temporary directory, and
-/// scripts/plot_mesh2d.py renders them with matplotlib.
-void write_before_after_png(const MeshResult& before, const MeshResult& after,
-                            const std::string& png) {
-    namespace fs = std::filesystem;
-    const fs::path script = plot_script();
-    if (script.empty() || !fs::exists(script))
-        throw IoError("--png: the plotting script plot_mesh2d.py is not available");
-    if (!fs::exists("/usr/bin/python3"))
-        throw IoError("--png: needs /usr/bin/python3 with matplotlib (Debian python3-matplotlib)");
-    std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
-    const fs::path dir = tmpl;
-    struct Cleanup {
-        fs::path d;
-        ~Cleanup() {
-            std::error_code ec;
-            fs::remove_all(d, ec);
+/// A drawing of two 2D meshes side by side, made in a private temporary directory and moved
+/// to its destination by commit(); the directory is removed on destruction.
+class BeforeAfterPicture {
+public:
+    /// Draws `before` and `after` (written as before.node/.ele and after.node/.ele) with
+    /// scripts/plot_mesh2d.py under /usr/bin/python3, without a shell.
+    /// \throw IoError naming the cause (the script's last error line) if drawing fails.
+    BeforeAfterPicture(const MeshResult& before, const MeshResult& after, const std::string& png)
+        : png_(png) {
+        namespace fs = std::filesystem;
+        const fs::path script = plot_script();
+        if (script.empty() || !fs::exists(script))
+            throw IoError("--png: the plotting script plot_mesh2d.py is not available");
+        if (!fs::exists("/usr/bin/python3"))
+            throw IoError("--png: needs /usr/bin/python3 with matplotlib (Debian python3-matplotlib)");
+        std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
+        dir_ = tmpl;
+        for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
+            (void)write_simplex_mesh(dir_ / name, SimplexMeshView{.dimension = 2,
+                                                                  .points = m->points,
+                                                                  .simplices = m->simplices});
+        const std::vector<std::string> args = {"/usr/bin/python3", script.string(),
+                                               (dir_ / "picture.png").string(),
+                                               (dir_ / "before.node").string(),
+                                               (dir_ / "after.node").string()};
+        std::vector<char*> argv;
+        for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        const std::string log = (dir_ / "plot.log").string();
+        posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        pid_t pid = 0;
+        const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        int status = 0;
+        const bool ok = rc == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+                        WEXITSTATUS(status) == 0 && fs::exists(dir_ / "picture.png");
+        if (!ok) {
+            std::string last;
+            std::ifstream in(log);
+            for (std::string line; std::getline(in, line);)
+                if (!line.empty()) last = line;
+            throw IoError("--png " + png + ": drawing failed" +
+                          (last.empty() ? std::string(" (needs /usr/bin/python3 with matplotlib, "
+                                                      "Debian python3-matplotlib)")
+                                        : ": " + last));
         }
-    } cleanup{dir};
-    for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
-        (void)write_simplex_mesh(dir / name, SimplexMeshView{.dimension = 2,
-                                                             .points = m->points,
-                                                             .simplices = m->simplices});
-    const fs::path target = fs::absolute(png);
-    const fs::path tmp_png = target.parent_path() / (".tmp-" + target.filename().string());
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + tmp_png.string() +
-                            "' '" + (dir / "before.node").string() + "' '" +
-                            (dir / "after.node").string() + "' > /dev/null 2>&1";
-    if (std::system(cmd.c_str()) != 0 || !fs::exists(tmp_png)) {
-        std::error_code ec;
-        fs::remove(tmp_png, ec);
-        throw IoError("--png " + png +
-                      ": drawing failed (needs /usr/bin/python3 with matplotlib, Debian "
-                      "python3-matplotlib)");
     }
-    fs::rename(tmp_png, target);
-}
+    BeforeAfterPicture(const BeforeAfterPicture&) = delete;
+    BeforeAfterPicture& operator=(const BeforeAfterPicture&) = delete;
+    ~BeforeAfterPicture() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+
+    /// Moves the picture to its destination atomically (a copy next to it, then a rename).
+    void commit() const {
+        namespace fs = std::filesystem;
+        const fs::path target = fs::absolute(png_);
+        const fs::path tmp = target.parent_path() /
+                             (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
+        std::error_code ec;
+        fs::copy_file(dir_ / "picture.png", tmp, fs::copy_options::overwrite_existing, ec);
+        if (!ec) fs::rename(tmp, target, ec);
+        if (ec) {
+            std::error_code ignored;
+            fs::remove(tmp, ignored);
+            throw IoError("--png " + png_ + ": cannot write: " + ec.message());
+        }
+    }
+
+private:
+    std::string png_;
+    std::filesystem::path dir_;
+};
 
 template <int D>
 void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
@@ -577,15 +620,23 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     if (!a.ops.empty()) rep["ops_file"] = a.ops;
     if (a.check) {
         progress.stage("checking");
-        std::vector<std::string> bad = tree.check_invariants();
-        if (dyn) bad = dyn->check_invariants();
+        // DynQuadMesh's check includes the tree's; DynOffCenterMesh2's does not.
+        std::vector<std::string> bad = dyn ? dyn->check_invariants() : tree.check_invariants();
         if constexpr (D == 2)
-            if (off) bad = off->check_invariants();
+            if (off)
+                for (std::string& e : off->check_invariants()) bad.push_back(std::move(e));
         for (std::string& s : mesh.problems) bad.push_back(std::move(s));
         if (!bad.empty())
             throw InternalError("--check failed (" + std::to_string(bad.size()) +
                                 " problems): " + bad.front());
         rep["check"] = {{"violations", 0}};
+    }
+
+    // The picture is drawn before any output is written, so a failure leaves no output.
+    std::optional<BeforeAfterPicture> picture;
+    if (before) {
+        progress.stage("drawing " + a.png);
+        picture.emplace(*before, mesh, a.png);
     }
 
     progress.stage("writing " + a.output);
@@ -601,9 +652,8 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
         write_soup(soup, a.output);
         written.push_back(a.output);
     }
-    if (before) {
-        progress.stage("drawing " + a.png);
-        write_before_after_png(*before, mesh, a.png);
+    if (picture) {
+        picture->commit();
         written.push_back(a.png);
     }
     write_report(a.common, rep);
@@ -627,6 +677,9 @@ void run_quadtree(const QuadtreeArgs& a) {
     if (!a.png.empty()) {
         DYNMESH_CHECK(a.dim == 2, "--png: pictures are drawn for 2D meshes only (got --dim 3)");
         DYNMESH_CHECK(lower_ext(a.png) == ".png", "--png " + a.png + ": expected a .png file");
+        const std::filesystem::path dir = std::filesystem::absolute(a.png).parent_path();
+        if (!std::filesystem::is_directory(dir))
+            throw IoError("--png " + a.png + ": the directory " + dir.string() + " does not exist");
     }
     const std::string ext = lower_ext(a.output);
     std::vector<std::string> allowed = kSimplexExtensions;

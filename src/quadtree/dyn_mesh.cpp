@@ -195,9 +195,7 @@ std::vector<std::string> DynQuadMesh<D>::check_invariants() const {
                       " leaves, the tree has " + std::to_string(leaves.size()));
     std::size_t total = 0;
     for (const CellId<D>& c : leaves) {
-        std::string name = "leaf (level " + std::to_string(c.level) + ";";
-        for (std::uint64_t v : c.index) name += " " + std::to_string(v);
-        name += ")";
+        const std::string name = detail::cell_name(c);
         const auto it = codes_.find(c);
         if (it == codes_.end()) {
             bad.push_back(name + " has no mesh code");

@@ -87,14 +87,18 @@ int holds_bit() {
 template <int D>
 constexpr int kSnapLevel = DynQuadtree<D>::kGuardBits;
 
+
+}  // namespace
+
 template <int D>
 std::string cell_name(const CellId<D>& c) {
     std::string s = "cell (level " + std::to_string(c.level) + ";";
-    for (std::uint64_t v : c.index) s += " " + std::to_string(v);
+    for (std::uint64_t v : c.index) {
+        s += ' ';
+        s += std::to_string(v);
+    }
     return s + ")";
 }
-
-}  // namespace
 
 template <int D>
 std::pair<Lattice<D>, std::uint64_t> cell_box(const CellId<D>& c) {
@@ -333,6 +337,7 @@ std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves(const DynQuadtree<D>& t
     template bool code_holds_point<D>(LeafCode);                                               \
     template Lattice<D> code_apex<D>(const CellId<D>&, LeafCode);                              \
     template std::pair<Lattice<D>, std::uint64_t> cell_box<D>(const CellId<D>&);               \
+    template std::string cell_name<D>(const CellId<D>&);                                       \
     template AssembledMesh<D> assemble<D>(const DynQuadtree<D>&,                               \
                                           std::span<const std::pair<CellId<D>, LeafCode>>);    \
     template const DynQuadtree<D>& mesh_mode_tree<D>(const DynQuadtree<D>&, DynQuadtree<D>&); \

@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,10 @@ template <int D>
 /// The star's warped corner (a corner of the leaf). Only meaningful when code_is_star().
 template <int D>
 [[nodiscard]] Lattice<D> code_apex(const CellId<D>& leaf, LeafCode code);
+
+/// "cell (level L; i j [k])", for messages.
+template <int D>
+[[nodiscard]] std::string cell_name(const CellId<D>& c);
 
 /// The lower corner of a cell and its side, in grid units.
 template <int D>

@@ -193,6 +193,10 @@ for o in d['ops']:
         run 0 "$bin" qmesh "$pts" --ops ops.txt -o pic.node --png before_after.png --quiet
         [ "$(head -c 4 before_after.png | tail -c 3)" = "PNG" ] || fail "--png wrote no PNG"
         cmp -s pic.node dyn.node || fail "--png changed the mesh"
+        # a name with a quote is a file name, not shell syntax
+        run 0 "$bin" qmesh "$pts" -o "it's.node" --png "it's.png" --quiet
+        [ -s "it's.png" ] || fail "--png with a quote in the name"
+        ls -a | grep -q '^\.tmp-' && fail "--png left a temporary file"
     fi
     ;;
 quadtree_bad)
@@ -222,6 +226,7 @@ quadtree_bad)
     expect_error "rho" "$pts" --rho 1.2
     expect_error "expected a .png" "$pts" --png pic.jpg
     expect_error "2D meshes only" "$pts" --dim 3 --png pic.png
+    expect_error "does not exist" "$pts" --png nodir/pic.png
     # 3D: dimension mismatch both ways, NaN, duplicates, a missing point, outside the domain,
     # malformed ops lines, and cells too small for double precision (spread too large).
     printf '0.1 0.2 0.3\n0.5 0.5 0.5\n0.7 0.1 0.4\n' > p3.xyz
