@@ -7,6 +7,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,22 @@ std::vector<PointD<D>> make_points(std::size_t n, bool clustered, std::uint64_t 
                              : rng.uniform(0.34, 0.66);
     }
     return pts;
+}
+
+/// The spread family at n = 10^4 (2D): 5000 points uniform in the middle third and 5000 in a
+/// square cluster of side 10^-k at (0.5, 0.5), so the spread grows like 10^k; `queries` are
+/// 4096 more points of the cluster (the deepest part of the tree).
+struct SpreadSet {
+    std::vector<Vec2> points, queries;
+};
+inline SpreadSet spread_set(int k) {
+    Rng rng(7);
+    const double side = std::pow(10.0, -static_cast<double>(k));
+    SpreadSet s;
+    for (int i = 0; i < 5000; ++i) s.points.push_back({rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)});
+    for (int i = 0; i < 5000; ++i) s.points.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
+    for (int i = 0; i < 4096; ++i) s.queries.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
+    return s;
 }
 
 using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;

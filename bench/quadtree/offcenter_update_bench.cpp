@@ -8,7 +8,9 @@
 ///   * BM_CgalRemesh: CGAL's 2D Delaunay mesher on the same points and box
 ///     (refine_Delaunay_mesh_2, Delaunay_mesh_size_criteria_2(0.125), i.e. about 20.7 degrees).
 /// Inputs: n = 1e3, 1e4, 1e5 points, uniform and clustered (20 Gaussian blobs of sigma 0.01, as
-/// quadtree_bench), in the middle third of the unit box; rho = 1.5. A summary table with the
+/// quadtree_bench), in the middle third of the unit box, and the spread family of quadtree_bench
+/// (n = 1e4, half the points in a cluster of side 1e-1 ... 1e-10, updates inside the cluster);
+/// rho = 1.5. A summary table with the
 /// ratios recompute / update follows Google Benchmark's output.
 /// Options: --benchmark_filter etc. as usual; DYNMESH_OFFCENTER_UPDATE_MAX_N (default 100000)
 /// caps n.
@@ -41,6 +43,7 @@ struct Case {
     std::string name;
     std::size_t n = 0;
     bool clustered = false;
+    int spread = 0;  // > 0: the spread family of bench_inputs.hpp with a cluster of side 10^-spread
 };
 std::vector<Case> g_cases;
 
@@ -60,9 +63,11 @@ Fixture& fixture(std::size_t i) {
     Fixture f;
     const Case& c = g_cases[i];
     DynQuadtree<2> probe;
-    for (const Vec2& p : bench::make_points<2>(c.n, c.clustered, 1))
+    bench::SpreadSet set;
+    if (c.spread > 0) set = bench::spread_set(c.spread);
+    for (const Vec2& p : c.spread > 0 ? set.points : bench::make_points<2>(c.n, c.clustered, 1))
         if (probe.insert(p) == InsertResult::Inserted) f.points.push_back(p);
-    f.queries = bench::make_points<2>(4096, c.clustered, 2);
+    f.queries = c.spread > 0 ? set.queries : bench::make_points<2>(4096, c.clustered, 2);
     const auto t0 = std::chrono::steady_clock::now();
     f.dyn =
         std::make_unique<DynOffCenterMesh2>(DynOffCenterMesh2::build(f.points, {}, {.rho = kRho}));
@@ -168,6 +173,8 @@ int main(int argc, char** argv) {
                 g_cases.push_back(
                     {std::string(clustered ? "clustered" : "uniform") + "-" + std::to_string(n), n,
                      clustered});
+    for (int k : {1, 4, 7, 10})
+        g_cases.push_back({"spread-1e-" + std::to_string(k), 10000, false, k});
     for (std::size_t i = 0; i < g_cases.size(); ++i) {
         const auto arg = static_cast<std::int64_t>(i);
         benchmark::RegisterBenchmark("BM_DynUpdate", BM_DynUpdate)

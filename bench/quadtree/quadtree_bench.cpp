@@ -88,13 +88,8 @@ void BM_Spread(benchmark::State& state) {
     const long k = static_cast<long>(state.range(0));
     auto it = cache.find(k);
     if (it == cache.end()) {
-        Rng rng(7);
-        const double side = std::pow(10.0, -static_cast<double>(k));
-        std::vector<Vec2> pts, queries;
-        for (int i = 0; i < 5000; ++i) pts.push_back({rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)});
-        for (int i = 0; i < 5000; ++i) pts.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
-        for (int i = 0; i < 4096; ++i) queries.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
-        it = cache.emplace(k, Fixture<Engine>{Engine::build(pts), std::move(queries)}).first;
+        bench::SpreadSet set = bench::spread_set(static_cast<int>(k));
+        it = cache.emplace(k, Fixture<Engine>{Engine::build(set.points), std::move(set.queries)}).first;
     }
     run_updates(state, it->second.engine, it->second.queries);
     state.counters["log10_spread"] = double(k) + 2.0;  // cluster spacing ~ side / 70, box ~ 1
