@@ -1,6 +1,7 @@
 #include "dynmesh/quadtree/dyn_mesh.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <unordered_map>
 #include <utility>
 
@@ -184,6 +185,36 @@ typename DynQuadMesh<D>::Mesh DynQuadMesh<D>::mesh() const {
     std::sort(leaves.begin(), leaves.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
     return detail::mesh_from_leaves(tree_, leaves);
+}
+
+template <int D>
+std::string DynQuadMesh<D>::canonical_dump() const {
+    const Mesh m = mesh();
+    const auto& simplices = [&]() -> const auto& {
+        if constexpr (D == 2)
+            return m.triangles;
+        else
+            return m.tets;
+    }();
+    std::string s = tree_.canonical_dump();
+    s += "mesh vertices=" + std::to_string(m.points.size()) +
+         " simplices=" + std::to_string(simplices.size()) + "\n";
+    char buf[48];
+    for (const auto& p : m.points) {
+        for (int d = 0; d < D; ++d) {
+            std::snprintf(buf, sizeof buf, d ? " %a" : "%a", p[static_cast<std::size_t>(d)]);
+            s += buf;
+        }
+        s += '\n';
+    }
+    for (const auto& t : simplices) {
+        for (int i = 0; i <= D; ++i) {
+            if (i) s += ' ';
+            s += std::to_string(t[static_cast<std::size_t>(i)]);
+        }
+        s += '\n';
+    }
+    return s;
 }
 
 template <int D>

@@ -96,6 +96,10 @@ void run_sequences(std::uint64_t seed, int sequences, int every) {
             const auto want = static_mesh(DynQuadtree<D>::build(current));
             const auto got = dm.mesh();
             expect_same_mesh(got, want, what);
+            if (k + 1 == ops) {  // the dump of tree and mesh equals a from-scratch build's
+                ASSERT_EQ(dm.canonical_dump(), DynQuadMesh<D>::build(current).canonical_dump())
+                    << what;
+            }
             ASSERT_EQ(simplices_of(got).size(), dm.simplex_count()) << what;
             const auto invalid = check_mesh(got);
             ASSERT_TRUE(invalid.empty()) << what << ":\n" << joined(invalid);

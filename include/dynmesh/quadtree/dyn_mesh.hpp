@@ -78,6 +78,10 @@ public:
     /// The current mesh in canonical form (vertices sorted by lattice key, simplices in leaf
     /// order). O(size log size): this is output, not part of an update.
     [[nodiscard]] Mesh mesh() const;
+    /// Deterministic text form of the tree and the mesh: the tree's canonical_dump(), then the
+    /// mesh's vertices (hexadecimal floats, exact) and simplices in canonical order. Equal point
+    /// sets over equal domains give byte-identical dumps, whatever the history of updates.
+    [[nodiscard]] std::string canonical_dump() const;
     /// Every violated invariant: the tree's (check_invariants), one stored code per leaf and
     /// no other, every stored code equal to its recomputation, the simplex count. Empty when
     /// valid. O(size).
