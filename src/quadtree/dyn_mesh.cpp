@@ -184,7 +184,7 @@ typename DynQuadMesh<D>::Mesh DynQuadMesh<D>::mesh() const {
     std::vector<std::pair<CellId<D>, detail::LeafCode>> leaves(codes_.begin(), codes_.end());
     std::sort(leaves.begin(), leaves.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
-    return detail::mesh_from_leaves(tree_, leaves);
+    return detail::mesh_from_leaves<D>(tree_, leaves);
 }
 
 template <int D>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <string>
+#include <utility>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
@@ -330,6 +331,30 @@ std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves(const DynQuadtree<D>& t
     return out;
 }
 
+template <int D>
+PublicMesh<D> mesh_from_leaves(const DynQuadtree<D>& tree,
+                               std::span<const std::pair<CellId<D>, LeafCode>> leaves) {
+    AssembledMesh<D> a = assemble<D>(tree, leaves);
+    PublicMesh<D> mesh;
+    mesh.origin = tree.options().origin;
+    mesh.width = tree.options().width;
+    mesh.leaves = leaves.size();
+    mesh.points = std::move(a.points);
+    if constexpr (D == 2)
+        mesh.triangles = std::move(a.simplices);
+    else
+        mesh.tets = std::move(a.simplices);
+    mesh.input_vertices = std::move(a.input_vertices);
+    return mesh;
+}
+
+template <int D>
+PublicMesh<D> mesh_of_tree(const DynQuadtree<D>& tree) {
+    DynQuadtree<D> storage;
+    const DynQuadtree<D>& mt = mesh_mode_tree(tree, storage);
+    return mesh_from_leaves<D>(mt, coded_leaves(mt));
+}
+
 #define DYNMESH_LEAF_MESH(D)                                                                   \
     template LeafCode leaf_code<D>(const DynQuadtree<D>&, const CellId<D>&);                   \
     template bool code_has_vertex<D>(const CellId<D>&, LeafCode, const Lattice<D>&);           \
@@ -341,7 +366,10 @@ std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves(const DynQuadtree<D>& t
     template AssembledMesh<D> assemble<D>(const DynQuadtree<D>&,                               \
                                           std::span<const std::pair<CellId<D>, LeafCode>>);    \
     template const DynQuadtree<D>& mesh_mode_tree<D>(const DynQuadtree<D>&, DynQuadtree<D>&); \
-    template std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves<D>(const DynQuadtree<D>&);
+    template std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves<D>(const DynQuadtree<D>&); \
+    template PublicMesh<D> mesh_from_leaves<D>(const DynQuadtree<D>&,                          \
+                                               std::span<const std::pair<CellId<D>, LeafCode>>); \
+    template PublicMesh<D> mesh_of_tree<D>(const DynQuadtree<D>&);
 DYNMESH_LEAF_MESH(2)
 DYNMESH_LEAF_MESH(3)
 #undef DYNMESH_LEAF_MESH

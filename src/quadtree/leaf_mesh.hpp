@@ -21,8 +21,7 @@
 #include <utility>
 #include <vector>
 
-#include "dynmesh/quadtree/oct_mesh.hpp"
-#include "dynmesh/quadtree/quad_mesh.hpp"
+#include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
 namespace dynmesh::detail {
@@ -90,11 +89,17 @@ template <int D>
 [[nodiscard]] AssembledMesh<D> assemble(const DynQuadtree<D>& tree,
                                         std::span<const std::pair<CellId<D>, LeafCode>> leaves);
 
+template <int D>
+using PublicMesh = SimplexMeshD<D>;
+
 /// The public mesh of a mesh-mode tree from its coded leaves (sorted by (level, index)).
-[[nodiscard]] QuadMesh2 mesh_from_leaves(const DynQuadtree<2>& tree,
-                                         std::span<const std::pair<CellId<2>, LeafCode>> leaves);
-[[nodiscard]] OctMesh3 mesh_from_leaves(const DynQuadtree<3>& tree,
-                                        std::span<const std::pair<CellId<3>, LeafCode>> leaves);
+template <int D>
+[[nodiscard]] PublicMesh<D> mesh_from_leaves(
+    const DynQuadtree<D>& tree, std::span<const std::pair<CellId<D>, LeafCode>> leaves);
+
+/// quad_mesh() / oct_mesh(): the mesh of any tree's point set, from scratch.
+template <int D>
+[[nodiscard]] PublicMesh<D> mesh_of_tree(const DynQuadtree<D>& tree);
 
 /// The mesh-mode tree of tree's point set: tree itself if it is in mesh mode, else a build.
 /// `storage` holds the built tree when one is needed.

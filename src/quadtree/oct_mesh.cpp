@@ -124,26 +124,9 @@ void leaf_simplices<3>(const CellId<3>& leaf, LeafCode code,
     for (const Tri& t : facets) out.push_back({apex, t[0], t[1], t[2]});
 }
 
-OctMesh3 mesh_from_leaves(const DynQuadtree<3>& tree,
-                          std::span<const std::pair<CellId<3>, LeafCode>> leaves) {
-    AssembledMesh<3> a = assemble<3>(tree, leaves);
-    OctMesh3 mesh;
-    mesh.origin = tree.options().origin;
-    mesh.width = tree.options().width;
-    mesh.leaves = leaves.size();
-    mesh.points = std::move(a.points);
-    mesh.tets = std::move(a.simplices);
-    mesh.input_vertices = std::move(a.input_vertices);
-    return mesh;
-}
-
 }  // namespace detail
 
-OctMesh3 oct_mesh(const DynQuadtree<3>& tree) {
-    DynQuadtree<3> storage;
-    const DynQuadtree<3>& mt = detail::mesh_mode_tree(tree, storage);
-    return detail::mesh_from_leaves(mt, detail::coded_leaves(mt));
-}
+OctMesh3 oct_mesh(const DynQuadtree<3>& tree) { return detail::mesh_of_tree<3>(tree); }
 
 std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
     std::vector<std::string> bad;

@@ -62,26 +62,9 @@ void leaf_simplices<2>(const CellId<2>& leaf, LeafCode code,
     }
 }
 
-QuadMesh2 mesh_from_leaves(const DynQuadtree<2>& tree,
-                           std::span<const std::pair<CellId<2>, LeafCode>> leaves) {
-    AssembledMesh<2> a = assemble<2>(tree, leaves);
-    QuadMesh2 mesh;
-    mesh.origin = tree.options().origin;
-    mesh.width = tree.options().width;
-    mesh.leaves = leaves.size();
-    mesh.points = std::move(a.points);
-    mesh.triangles = std::move(a.simplices);
-    mesh.input_vertices = std::move(a.input_vertices);
-    return mesh;
-}
-
 }  // namespace detail
 
-QuadMesh2 quad_mesh(const DynQuadtree<2>& tree) {
-    DynQuadtree<2> storage;
-    const DynQuadtree<2>& mt = detail::mesh_mode_tree(tree, storage);
-    return detail::mesh_from_leaves(mt, detail::coded_leaves(mt));
-}
+QuadMesh2 quad_mesh(const DynQuadtree<2>& tree) { return detail::mesh_of_tree<2>(tree); }
 
 std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
     std::vector<std::string> bad;

@@ -15,7 +15,9 @@
 
 namespace dynmesh {
 namespace {
+using testing_quadtree::expect_inputs_are_vertices;
 using testing_quadtree::joined;
+using testing_quadtree::random_walk;
 
 
 /// Uniform points in the middle third of [0, 1]^3.
@@ -66,12 +68,7 @@ void expect_good_mesh(const DynQuadtree<3>& tree, const std::string& what) {
     const OctMesh3 mesh = oct_mesh(tree);
     const auto bad = check_oct_mesh(mesh);
     EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
-    const auto pts = tree.points();
-    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
-        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
-    }
+    expect_inputs_are_vertices(tree, mesh, what);
     const DihedralRangeDeg a = dihedral_range_deg(mesh);
     EXPECT_GE(a.min, kOctMeshMinDihedralDeg) << what;
     EXPECT_LE(a.max, kOctMeshMaxDihedralDeg) << what;
@@ -140,16 +137,7 @@ TEST(OctMesh, HistoryIndependentAfterInsertsAndErases) {
         pool.insert(pool.end(), cl.begin(), cl.end());
         Rng rng(seed * 7);
         DynQuadtree<3> tree;
-        std::vector<Vec3> present;
-        for (int step = 0; step < 120; ++step) {
-            if (!present.empty() && rng.coin(0.35)) {
-                const std::size_t k = rng.below(present.size());
-                ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
-                present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
-            } else {
-                const Vec3 p = pool[rng.below(pool.size())];
-                if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
-            }
+        random_walk<3>(tree, pool, 120, rng, [&](const std::vector<Vec3>& present, int step) {
             if (step % 60 == 59) {
                 const std::string what =
                     "seed " + std::to_string(seed) + " step " + std::to_string(step);
@@ -159,7 +147,7 @@ TEST(OctMesh, HistoryIndependentAfterInsertsAndErases) {
                     EXPECT_TRUE(check_oct_mesh(dynamic).empty()) << what;
                 }
             }
-        }
+        });
     }
 }
 

@@ -16,6 +16,7 @@
 
 namespace dynmesh {
 namespace {
+using testing_quadtree::expect_inputs_are_vertices;
 using testing_quadtree::joined;
 
 
@@ -58,13 +59,8 @@ void expect_good_mesh(const DynQuadtree<2>& tree, double rho, const std::string&
     const OffCenterMesh2 mesh = offcenter_mesh(tree, {.rho = rho});
     const auto bad = check_offcenter_mesh(mesh);
     EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
-    const auto pts = tree.points();
-    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
-        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
-    }
-    EXPECT_EQ(mesh.points.size(), pts.size() + mesh.steiner) << what;
+    expect_inputs_are_vertices(tree, mesh, what);
+    EXPECT_EQ(mesh.points.size(), tree.size() + mesh.steiner) << what;
     EXPECT_EQ(mesh.steiner, mesh.boundary_steiner + mesh.apex_offcenters + mesh.circumcentres)
         << what;
     EXPECT_EQ(mesh.stuck_pairs, 0u) << what;

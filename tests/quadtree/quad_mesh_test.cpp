@@ -14,7 +14,9 @@
 
 namespace dynmesh {
 namespace {
+using testing_quadtree::expect_inputs_are_vertices;
 using testing_quadtree::joined;
+using testing_quadtree::random_walk;
 
 
 /// Uniform points in the middle third of [0, 1]^2.
@@ -44,12 +46,7 @@ void expect_good_mesh(const DynQuadtree<2>& tree, const std::string& what) {
     const QuadMesh2 mesh = quad_mesh(tree);
     const auto bad = check_quad_mesh(mesh);
     EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
-    const auto pts = tree.points();
-    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
-        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
-    }
+    expect_inputs_are_vertices(tree, mesh, what);
     const AngleRangeDeg a = angle_range_deg(mesh);
     EXPECT_GE(a.min, kQuadMeshMinAngleDeg - 1e-6) << what;
     EXPECT_LE(a.max, kQuadMeshMaxAngleDeg + 1e-6) << what;
@@ -124,16 +121,7 @@ TEST(QuadMesh, HistoryIndependentAfterInsertsAndErases) {
         pool.insert(pool.end(), cl.begin(), cl.end());
         Rng rng(seed * 7);
         DynQuadtree<2> tree;
-        std::vector<Vec2> present;
-        for (int step = 0; step < 400; ++step) {
-            if (!present.empty() && rng.coin(0.35)) {
-                const std::size_t k = rng.below(present.size());
-                ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
-                present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
-            } else {
-                const Vec2 p = pool[rng.below(pool.size())];
-                if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
-            }
+        random_walk<2>(tree, pool, 400, rng, [&](const std::vector<Vec2>& present, int step) {
             if (step % 100 == 99) {
                 const std::string what =
                     "seed " + std::to_string(seed) + " step " + std::to_string(step);
@@ -141,7 +129,7 @@ TEST(QuadMesh, HistoryIndependentAfterInsertsAndErases) {
                 expect_same_mesh(dynamic, quad_mesh(DynQuadtree<2>::build(present)), what);
                 EXPECT_TRUE(check_quad_mesh(dynamic).empty()) << what;
             }
-        }
+        });
     }
 }
 

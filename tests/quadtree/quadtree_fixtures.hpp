@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -60,6 +62,39 @@ inline std::vector<PointD<D>> point_pool(Rng& rng, std::size_t m, int max_exp = 
         }
     }
     return pool;
+}
+
+/// Every tree point is a vertex of the mesh at its own coordinates (mesh.input_vertices is in
+/// tree.points() order).
+template <int D, class Mesh>
+void expect_inputs_are_vertices(const DynQuadtree<D>& tree, const Mesh& mesh,
+                                const std::string& what) {
+    const auto pts = tree.points();
+    ASSERT_EQ(mesh.input_vertices.size(), pts.size()) << what;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        ASSERT_LT(mesh.input_vertices[i], mesh.points.size()) << what;
+        EXPECT_EQ(mesh.points[mesh.input_vertices[i]], pts[i].second) << what << " point " << i;
+    }
+}
+
+/// `steps` random updates of `tree`: with probability 0.35 (and points present) an erase of a
+/// present point, else an insert of a pool point (duplicates are skipped). After every step,
+/// check(present, step) with the current point set.
+template <int D, class Check>
+void random_walk(DynQuadtree<D>& tree, const std::vector<PointD<D>>& pool, int steps, Rng& rng,
+                 Check&& check) {
+    std::vector<PointD<D>> present;
+    for (int step = 0; step < steps; ++step) {
+        if (!present.empty() && rng.coin(0.35)) {
+            const std::size_t k = rng.below(present.size());
+            ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
+            present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
+        } else {
+            const PointD<D> p = pool[rng.below(pool.size())];
+            if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
+        }
+        check(present, step);
+    }
 }
 
 }  // namespace dynmesh::testing_quadtree
