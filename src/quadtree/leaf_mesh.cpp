@@ -332,6 +332,26 @@ std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves(const DynQuadtree<D>& t
 }
 
 template <int D>
+void append_vertex_problems(std::span<const PointD<D>> points, const std::vector<bool>& used,
+                            std::vector<std::string>& bad) {
+    const std::size_t n = points.size();
+    for (std::size_t v = 0; v < n; ++v)
+        if (!used[v]) bad.push_back("vertex " + std::to_string(v) + " is unused");
+    std::vector<std::pair<std::array<double, D>, std::size_t>> sorted;
+    sorted.reserve(n);
+    for (std::size_t v = 0; v < n; ++v) {
+        std::array<double, D> c{};
+        for (int d = 0; d < D; ++d) c[d] = points[v][static_cast<std::size_t>(d)];
+        sorted.push_back({c, v});
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t k = 1; k < sorted.size(); ++k)
+        if (sorted[k].first == sorted[k - 1].first)
+            bad.push_back("vertices " + std::to_string(sorted[k - 1].second) + " and " +
+                          std::to_string(sorted[k].second) + " coincide");
+}
+
+template <int D>
 PublicMesh<D> mesh_from_leaves(const DynQuadtree<D>& tree,
                                std::span<const std::pair<CellId<D>, LeafCode>> leaves) {
     AssembledMesh<D> a = assemble<D>(tree, leaves);
@@ -369,7 +389,9 @@ PublicMesh<D> mesh_of_tree(const DynQuadtree<D>& tree) {
     template std::vector<std::pair<CellId<D>, LeafCode>> coded_leaves<D>(const DynQuadtree<D>&); \
     template PublicMesh<D> mesh_from_leaves<D>(const DynQuadtree<D>&,                          \
                                                std::span<const std::pair<CellId<D>, LeafCode>>); \
-    template PublicMesh<D> mesh_of_tree<D>(const DynQuadtree<D>&);
+    template PublicMesh<D> mesh_of_tree<D>(const DynQuadtree<D>&);                             \
+    template void append_vertex_problems<D>(std::span<const PointD<D>>, const std::vector<bool>&, \
+                                            std::vector<std::string>&);
 DYNMESH_LEAF_MESH(2)
 DYNMESH_LEAF_MESH(3)
 #undef DYNMESH_LEAF_MESH

@@ -58,6 +58,12 @@ template <int D>
 template <int D>
 [[nodiscard]] std::string cell_name(const CellId<D>& c);
 
+/// Appends to `bad` one message per unused vertex ("vertex V is unused") and per pair of
+/// vertices at one position ("vertices U and V coincide"), for the mesh checkers.
+template <int D>
+void append_vertex_problems(std::span<const PointD<D>> points, const std::vector<bool>& used,
+                            std::vector<std::string>& bad);
+
 /// The lower corner of a cell and its side, in grid units.
 template <int D>
 [[nodiscard]] std::pair<Lattice<D>, std::uint64_t> cell_box(const CellId<D>& c);

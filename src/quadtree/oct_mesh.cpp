@@ -201,17 +201,7 @@ std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
         }
         i = j;
     }
-    for (std::size_t v = 0; v < n; ++v)
-        if (!used[v]) bad.push_back("vertex " + std::to_string(v) + " is unused");
-    std::vector<std::pair<std::array<double, 3>, std::size_t>> sorted;
-    sorted.reserve(n);
-    for (std::size_t v = 0; v < n; ++v)
-        sorted.push_back({{mesh.points[v].x, mesh.points[v].y, mesh.points[v].z}, v});
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t k = 1; k < sorted.size(); ++k)
-        if (sorted[k].first == sorted[k - 1].first)
-            bad.push_back("vertices " + std::to_string(sorted[k - 1].second) + " and " +
-                          std::to_string(sorted[k].second) + " coincide");
+    detail::append_vertex_problems<3>(mesh.points, used, bad);
     return bad;
 }
 

@@ -109,16 +109,7 @@ std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
             bad.push_back(name + " is shared by " + std::to_string(dirs.size()) + " triangles");
         }
     }
-    for (std::size_t v = 0; v < n; ++v)
-        if (!used[v]) bad.push_back("vertex " + std::to_string(v) + " is unused");
-    std::vector<std::pair<std::pair<double, double>, std::size_t>> sorted;
-    sorted.reserve(n);
-    for (std::size_t v = 0; v < n; ++v) sorted.push_back({{mesh.points[v].x, mesh.points[v].y}, v});
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t k = 1; k < sorted.size(); ++k)
-        if (sorted[k].first == sorted[k - 1].first)
-            bad.push_back("vertices " + std::to_string(sorted[k - 1].second) + " and " +
-                          std::to_string(sorted[k].second) + " coincide");
+    detail::append_vertex_problems<2>(mesh.points, used, bad);
     return bad;
 }
 
