@@ -1,20 +1,26 @@
 #include "cli_common.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
-#include "dynmesh/error.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/text_file.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/system/process.hpp"
 
 namespace dynmesh::cli {
 
-void check_report_path(const CommonOptions& common, const std::vector<std::string>& files) {
-    if (common.report_path.empty()) return;
-    for (const std::string& f : files)
-        if (!f.empty()) ensure_not_same_file(f, common.report_path);
+namespace fs = std::filesystem;
+
+const std::string& exit_code_help() {
+    static const std::string text =
+        "Exit codes: 0 success; 1 the run's checks found a problem (--check, dynmesh check); "
+        "2 usage error (unknown flag, bad value, clashing or unwritable output paths); "
+        "3 bad input file (missing, unreadable, malformed, not a valid mesh), or an output "
+        "that could not be written; 4 internal error (a bug in dynmesh).";
+    return text;
 }
 
 const CLI::Validator& finite_number() {
@@ -35,7 +41,37 @@ const CLI::Validator& finite_number() {
 void add_common_options(CLI::App& app, CommonOptions& common) {
     app.add_flag("-q,--quiet", common.quiet, "No progress output on stderr");
     app.add_option("--report", common.report_path, "Write a machine-readable JSON report here");
+    app.footer(exit_code_help());
 }
+
+// ---- outputs --------------------------------------------------------------------------------
+
+RunOutputs::RunOutputs(const CommonOptions& common, std::vector<fs::path> inputs)
+    : set_(std::move(inputs)) {
+    if (!common.report_path.empty()) report_staged_ = set_.add_file(common.report_path, "--report");
+}
+
+fs::path RunOutputs::file(const fs::path& target, std::string_view what) {
+    return set_.add_file(target, what);
+}
+
+fs::path RunOutputs::file_set(const fs::path& base, const std::vector<std::string>& extensions,
+                              std::string_view what) {
+    return set_.add_file_set(base, extensions, what);
+}
+
+fs::path RunOutputs::directory(const fs::path& target, std::string_view what) {
+    return set_.add_directory(target, what);
+}
+
+void RunOutputs::report(const nlohmann::json& report) {
+    if (report_staged_.empty()) return;
+    // Paths that are not UTF-8 must not make the report fail: replace invalid bytes.
+    write_text_file(report_staged_,
+                    report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+}
+
+// ---- progress -------------------------------------------------------------------------------
 
 Progress::Progress(std::string command, bool quiet)
     : command_(std::move(command)), quiet_(quiet), start_(std::chrono::steady_clock::now()) {
@@ -82,35 +118,114 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void write_report(const CommonOptions& common, const nlohmann::json& report) {
-    if (common.report_path.empty()) return;
-    // Paths that are not UTF-8 must not make the report fail: replace invalid bytes.
-    write_text_file(common.report_path,
-                    report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-}
+// ---- inputs ---------------------------------------------------------------------------------
 
-SurfaceMesh load_mesh(const std::filesystem::path& path) { return read_mesh(path); }
+SurfaceMesh load_mesh(const fs::path& path) { return read_mesh(path); }
 
-void require_closed_manifold(const SurfaceMesh& mesh, const std::filesystem::path& path) {
+void require_closed_manifold(const SurfaceMesh& mesh, const fs::path& path) {
     const MeshCheckReport r = check_mesh(mesh, {.require_closed = true, .check_degenerate = false});
-    if (r.ok()) return;
-    throw TopologyError(path.string() + ": not a closed oriented 2-manifold: " + r.problems.front() +
-                        (r.n_problems > 1 ? " (and " + std::to_string(r.n_problems - 1) + " more problems)" : ""));
+    if (!r.ok())
+        throw TopologyError(path.string() + ": not a closed oriented 2-manifold: " + r.problems.front() +
+                            (r.n_problems > 1 ? " (and " + std::to_string(r.n_problems - 1) + " more problems)" : ""));
+    const MeshCheckReport d = check_mesh(mesh, {.check_degenerate = true, .max_listed = 1});
+    if (d.degenerate_faces > 0)
+        throw TopologyError(path.string() + ": " + d.problems.front() +
+                            (d.degenerate_faces > 1
+                                 ? " (and " + std::to_string(d.degenerate_faces - 1) + " more)"
+                                 : "") +
+                            "; zero-area triangles are refused: remove them first");
 }
 
-int guarded(const std::string& command, const std::function<void()>& body) {
-    try {
-        body();
-        return 0;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "dynmesh " << command << ": error: out of memory" << std::endl;
-    } catch (const std::exception& e) {
-        std::string msg = e.what();
-        for (char& c : msg)
-            if (c == '\n' || c == '\r') c = ' ';
-        std::cerr << "dynmesh " << command << ": error: " << msg << std::endl;
+void require_writable_mesh_extension(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    std::string lower;
+    for (char c : ext) lower.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+    std::string list;
+    for (const std::string& e : writable_mesh_extensions()) {
+        if (e == lower) return;
+        list += (list.empty() ? "" : " ") + e;
     }
-    return 1;
+    throw UsageError("-o " + path + ": unsupported extension '" + ext + "' (write " + list + ")");
+}
+
+void require_valid_output(const SurfaceMesh& mesh, const std::string& command) {
+    const MeshCheckReport c = check_mesh(mesh, {.require_closed = true});
+    if (!c.ok()) throw InternalError(command + " produced an invalid mesh: " + c.problems.front());
+}
+
+// ---- plots ----------------------------------------------------------------------------------
+
+std::optional<std::string> plotting_unavailable(const std::string& name) {
+    if (find_bundled_script(name).empty())
+        return "the plotting script " + name + " is not installed next to dynmesh (" +
+               (executable_directory().parent_path() / "share/dynmesh/scripts").string() + ")";
+    std::error_code ec;
+    if (!fs::exists(plotting_python(), ec))
+        return "needs " + plotting_python().string() + " with matplotlib (Debian python3-matplotlib)";
+    return std::nullopt;
+}
+
+void run_plot_script(const std::string& name, const std::vector<std::string>& args,
+                     const std::string& what) {
+    if (const auto why = plotting_unavailable(name)) throw IoError(what + ": " + *why);
+    std::vector<std::string> argv = {plotting_python().string(), find_bundled_script(name).string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const ProcessResult r = run_process(argv);
+    if (!r.ok())
+        throw IoError(what + ": drawing failed (" + r.describe() +
+                      (r.error_tail.find("matplotlib") != std::string::npos
+                           ? "; install Debian python3-matplotlib"
+                           : "") +
+                      ")");
+}
+
+// ---- errors ---------------------------------------------------------------------------------
+
+namespace {
+
+std::string one_line(std::string msg) {
+    for (char& c : msg)
+        if (c == '\n' || c == '\r') c = ' ';
+    return msg;
+}
+
+}  // namespace
+
+int guarded(const std::string& command, const std::function<void(RunContext&)>& body) {
+    RunContext ctx;
+    const auto say = [&](const char* kind, const std::string& msg) {
+        std::cerr << "dynmesh " << command << ": " << kind << ": " << one_line(msg) << std::endl;
+    };
+    try {
+        body(ctx);
+        return kExitOk;
+    } catch (const CheckFailed& e) {
+        say("check failed", e.what());
+        return kExitCheckFailed;
+    } catch (const UsageError& e) {
+        say("usage error", e.what());
+        return kExitUsage;
+    } catch (const InternalError& e) {
+        say("internal error (a bug in dynmesh; please report it)", e.what());
+        return kExitInternal;
+    } catch (const TopologyError& e) {
+        say("error", e.what());
+        return kExitBadInput;
+    } catch (const InvalidInput& e) {
+        const bool in_usage = ctx.phase() == RunContext::Phase::Usage;
+        say(in_usage ? "usage error" : "error", e.what());
+        return in_usage ? kExitUsage : kExitBadInput;
+    } catch (const IoError& e) {
+        const bool in_usage = ctx.phase() == RunContext::Phase::Usage;
+        say(in_usage ? "usage error" : "error", e.what());
+        return in_usage ? kExitUsage : kExitBadInput;
+    } catch (const std::bad_alloc&) {
+        say("error", "out of memory");
+        return kExitInternal;
+    } catch (const std::exception& e) {
+        say("internal error (a bug in dynmesh; please report it)", e.what());
+        return kExitInternal;
+    }
 }
 
 }  // namespace dynmesh::cli

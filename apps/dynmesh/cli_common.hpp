@@ -1,6 +1,15 @@
 #pragma once
-/// \file Shared plumbing of the dynmesh subcommands: progress on stderr, JSON reports
-/// written atomically, input loading with one-line errors, and the error-to-exit-code rule.
+/// \file Shared plumbing of the dynmesh subcommands: the exit-code contract, progress on
+/// stderr, all-or-nothing outputs (OutputSet) with the JSON report among them, input loading
+/// with one-line errors, and the plotting scripts.
+///
+/// Exit codes, the same for every subcommand (printed by --help):
+///   0  success
+///   1  the run's checks found a problem (--check, `dynmesh check`)
+///   2  usage error: unknown flag, bad value or choice, clashing or unwritable output paths
+///   3  bad input file (missing, unreadable, malformed, not a valid mesh or point set), or an
+///      output that could not be written
+///   4  internal error (a bug in dynmesh)
 
 #include <CLI/CLI.hpp>
 
@@ -11,23 +20,84 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "dynmesh/error.hpp"
+#include "dynmesh/io/output_set.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh::cli {
+
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitCheckFailed = 1,
+    kExitUsage = 2,
+    kExitBadInput = 3,
+    kExitInternal = 4,
+};
+
+/// The exit-code table as --help shows it.
+[[nodiscard]] const std::string& exit_code_help();
+
+/// A bad command line that CLI11's validators cannot express (exit 2).
+struct UsageError : Error {
+    using Error::Error;
+};
+/// The run finished but its checks found a problem (exit 1); outputs are still written.
+struct CheckFailed : Error {
+    using Error::Error;
+};
+
+/// Where a run is. An InvalidInput or IoError while the command line and the output paths
+/// are checked is a usage error (2); later it is about an input file (3).
+class RunContext {
+public:
+    enum class Phase { Usage, Input };
+    /// Command line and output paths are done; from now on errors are about the input.
+    void inputs_begin() { phase_ = Phase::Input; }
+    [[nodiscard]] Phase phase() const { return phase_; }
+
+private:
+    Phase phase_ = Phase::Usage;
+};
 
 /// Options every subcommand shares.
 struct CommonOptions {
     bool quiet = false;
     std::string report_path;  ///< --report FILE (JSON); empty = none
 };
+/// Adds -q/--quiet and --report, and the exit-code table to the subcommand's help.
 void add_common_options(CLI::App& app, CommonOptions& common);
-/// Refuses a --report path that names one of the command's input or output files.
-void check_report_path(const CommonOptions& common, const std::vector<std::string>& files);
+
 /// A CLI11 validator that rejects NaN and infinities (CLI::Range lets NaN through).
 const CLI::Validator& finite_number();
+
+/// The outputs of one run (OutputSet) plus its --report: every output is registered up
+/// front, written to its staging path, and moved into place by commit() only when all of
+/// them were written.
+class RunOutputs {
+public:
+    /// Registers the --report file (if any) against `inputs` and the outputs added later.
+    RunOutputs(const CommonOptions& common, std::vector<std::filesystem::path> inputs);
+    /// Registers an output file; returns the path to write it to.
+    std::filesystem::path file(const std::filesystem::path& target, std::string_view what);
+    /// Registers base+ext for each extension; returns the staging base.
+    std::filesystem::path file_set(const std::filesystem::path& base,
+                                   const std::vector<std::string>& extensions, std::string_view what);
+    /// Registers an output directory; returns the staging directory.
+    std::filesystem::path directory(const std::filesystem::path& target, std::string_view what);
+    /// Writes the report (pretty JSON) to its staging path if --report was given.
+    void report(const nlohmann::json& report);
+    /// Moves everything into place.
+    void commit() { set_.commit(); }
+
+private:
+    OutputSet set_;
+    std::filesystem::path report_staged_;
+};
 
 /// Prints "dynmesh <cmd>: <stage> ... <elapsed> s" to stderr every two seconds while a run
 /// is longer than two seconds, from a background thread; silent with --quiet and for short
@@ -57,17 +127,31 @@ private:
 /// Seconds since `t0`.
 double seconds_since(std::chrono::steady_clock::time_point t0);
 
-/// Writes the report as pretty JSON if a path was given.
-void write_report(const CommonOptions& common, const nlohmann::json& report);
-
 /// Reads a mesh; errors come back as IoError/TopologyError naming the file.
 [[nodiscard]] SurfaceMesh load_mesh(const std::filesystem::path& path);
-/// Throws TopologyError "<file>: not a closed oriented 2-manifold: <first problem>" unless the
-/// mesh is one.
+/// The input rule of every command that changes a mesh (flip, worsen, deform): a closed
+/// oriented 2-manifold without zero-area triangles.
+/// \throw TopologyError "<file>: not a closed oriented 2-manifold: <first problem>", or
+///        "<file>: face N is degenerate (zero area) ..." naming the first such face.
 void require_closed_manifold(const SurfaceMesh& mesh, const std::filesystem::path& path);
 
-/// Runs `body`, turning dynmesh and standard exceptions into a one-line message on stderr
-/// ("dynmesh <cmd>: error: ...") and exit code 1.
-int guarded(const std::string& command, const std::function<void()>& body);
+/// The mesh-writing commands check the output's extension before any work.
+/// \throw UsageError naming `path` and the writable extensions.
+void require_writable_mesh_extension(const std::string& path);
+/// An exit-0 output always passes `dynmesh check`: verifies a result before it is written.
+/// \throw InternalError naming the command and the first problem.
+void require_valid_output(const SurfaceMesh& mesh, const std::string& command);
+
+/// The bundled plotting script `name`, run as /usr/bin/python3 script args... without a
+/// shell.
+/// \throw IoError "<what>: drawing failed: <the script's last error line>" when it fails.
+void run_plot_script(const std::string& name, const std::vector<std::string>& args,
+                     const std::string& what);
+/// Why a plot cannot be drawn here (script or interpreter missing), or nullopt.
+[[nodiscard]] std::optional<std::string> plotting_unavailable(const std::string& name);
+
+/// Runs `body`, turning every exception into one line on stderr
+/// ("dynmesh <cmd>: error: ...") and the exit code of the contract above.
+int guarded(const std::string& command, const std::function<void(RunContext&)>& body);
 
 }  // namespace dynmesh::cli

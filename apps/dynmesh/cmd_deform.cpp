@@ -1,9 +1,9 @@
 /// `dynmesh deform`: a deforming-surface scenario (or any closed mesh carried by a warp) run
 /// through DeformingMesh, with a ParaView series, a per-time-unit log, quality plots and a
 /// JSON report (shared/specs/deforming-mesh.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -101,26 +101,28 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     return j;
 }
 
-/// The plotting script next to the sources, when it is there.
-fs::path plot_script() {
-#ifdef DYNMESH_SCRIPTS_DIR
-    return fs::path(DYNMESH_SCRIPTS_DIR) / "plot_deform.py";
-#else
-    return {};
-#endif
-}
-
-void run_deform_cmd(const DeformArgs& a) {
-    Progress progress("deform", a.common.quiet);
+void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     const Schedule schedule = parse_schedule(a.schedule);
-    if (a.format != "vtp" && a.format != "ply" && a.format != "off")
-        throw InvalidInput("--format must be vtp, ply or off, got '" + a.format + "'");
-    std::vector<std::string> files;
-    if (fs::exists(a.scenario)) files.push_back(a.scenario);
-    check_report_path(a.common, files);
-    if (!a.out.empty() && fs::exists(a.scenario) &&
-        fs::weakly_canonical(fs::path(a.scenario)).parent_path() == fs::weakly_canonical(fs::path(a.out)))
-        throw InvalidInput("--out " + a.out + " is the input mesh's own directory; choose another");
+    // A scenario name, or a mesh file (anything that exists, or has a mesh extension).
+    std::error_code ec;
+    const bool is_file = fs::exists(a.scenario, ec) || fs::path(a.scenario).has_extension();
+    static const std::vector<std::string> kScenarios = {"pulse", "stretch", "twist", "bend",
+                                                        "boomerang", "rotate", "dimple"};
+    if (!is_file && std::find(kScenarios.begin(), kScenarios.end(), a.scenario) == kScenarios.end())
+        throw UsageError("'" + a.scenario +
+                         "' is neither a scenario (pulse, stretch, twist, bend, boomerang, rotate, "
+                         "dimple) nor a mesh file");
+    if (!is_file && !a.warp.empty())
+        throw UsageError("--warp is for a mesh file; the scenario '" + a.scenario +
+                         "' has its own motion");
+    RunOutputs out(a.common, is_file ? std::vector<fs::path>{a.scenario} : std::vector<fs::path>{});
+    const fs::path out_dir = a.out.empty() ? fs::path{} : out.directory(a.out, "--out");
+    ctx.inputs_begin();
+    Progress progress("deform", a.common.quiet);
+    if (is_file) {
+        progress.stage("reading " + a.scenario);
+        require_closed_manifold(load_mesh(a.scenario), a.scenario);
+    }
 
     progress.stage("building the scenario");
     ScenarioOptions so;
@@ -134,7 +136,6 @@ void run_deform_cmd(const DeformArgs& a) {
         std::cerr << "dynmesh deform: " << s.description << "; " << s.initial.size() << " samples, "
                   << s.time_units << " time units, lambda = " << s.lambda << ", h0 = " << s.h0 << "\n";
 
-    if (!a.out.empty()) fs::create_directories(a.out);
     std::vector<std::pair<double, std::string>> series;
 
     DeformRunOptions ro;
@@ -146,39 +147,43 @@ void run_deform_cmd(const DeformArgs& a) {
     ro.check_invariants = a.check;
     ro.on_frame = [&](const DeformFrame& f) {
         progress.stage("t = " + std::to_string(f.t) + " / " + std::to_string(s.time_units));
-        if (a.out.empty()) return;
+        if (out_dir.empty()) return;
         if (f.t % a.every != 0 && f.t != s.time_units) return;
         const SurfaceMesh& m = f.mesh->mesh();
         const std::string name = frame_name(f.t, a.format);
         if (a.format == "vtp") {
-            write_mesh(m, fs::path(a.out) / name, face_fields(m, f.mesh->max_circumradius()));
+            write_mesh(m, out_dir / name, face_fields(m, f.mesh->max_circumradius()));
             series.emplace_back(f.t, name);
         } else {
-            write_mesh(m, fs::path(a.out) / name);
+            write_mesh(m, out_dir / name);
         }
     };
     const DeformRunReport r = run_deform(s, ro);
 
     nlohmann::json j = report_json(r, s);
-    if (!a.out.empty()) {
+    if (!out_dir.empty()) {
         progress.stage("writing the log");
-        if (a.format == "vtp") write_pvd(fs::path(a.out) / "mesh.pvd", series);
-        write_text_file(fs::path(a.out) / "log.csv", log_csv(r));
-        write_text_file(fs::path(a.out) / "summary.json", j.dump(2) + "\n");
-        const fs::path script = plot_script();
-        if (!a.no_plot && !script.empty() && fs::exists(script) && fs::exists("/usr/bin/python3")) {
+        if (a.format == "vtp") write_pvd(out_dir / "mesh.pvd", series);
+        write_text_file(out_dir / "log.csv", log_csv(r));
+        write_text_file(out_dir / "summary.json", j.dump(2) + "\n");
+        if (!a.no_plot) {
+            // The plot is optional here: without Python/matplotlib the run still succeeds.
             progress.stage("plotting");
-            const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + (fs::path(a.out) / "log.csv").string() +
-                                    "' '" + (fs::path(a.out) / "quality.png").string() + "' --title '" + s.name + " (" +
-                                    r.schedule + ", kappa " + std::to_string(static_cast<int>(r.kappa)) +
-                                    ")' >/dev/null 2>&1";
-            if (std::system(cmd.c_str()) == 0)
+            const std::string title = s.name + " (" + r.schedule + ", kappa " +
+                                      std::to_string(static_cast<int>(r.kappa)) + ")";
+            try {
+                run_plot_script("plot_deform.py",
+                                {(out_dir / "log.csv").string(), (out_dir / "quality.png").string(),
+                                 "--title", title},
+                                "quality.png");
                 j["plot"] = (fs::path(a.out) / "quality.png").string();
-            else if (!a.common.quiet)
-                std::cerr << "dynmesh deform: note: no quality.png (needs /usr/bin/python3 with matplotlib)\n";
+            } catch (const IoError& e) {
+                if (!a.common.quiet) std::cerr << "dynmesh deform: note: no quality.png: " << e.what() << "\n";
+            }
         }
     }
-    write_report(a.common, j);
+    out.report(j);
+    out.commit();
     if (!a.common.quiet) {
         std::printf("%s: %zu samples, %d time units, %zu updates (%zu emergency), %zu flips, %zu insertions, "
                     "%zu removals, %.3f s in updates\n",
@@ -196,7 +201,7 @@ void run_deform_cmd(const DeformArgs& a) {
         if (!r.first_invariant_failures.empty()) why += " (first: " + r.first_invariant_failures.front() + ")";
         why += ", " + std::to_string(r.self_intersections) + " self-intersections, " + std::to_string(r.inverted) +
                " inverted triangles";
-        throw TopologyError("--check failed: " + why);
+        throw CheckFailed(why);
     }
 }
 
@@ -211,7 +216,8 @@ void register_deform(CLI::App& root, int& result) {
     sub->add_option("scenario", args->scenario,
                     "pulse | stretch | twist | bend | boomerang | rotate | dimple, or a closed mesh file (.off .obj .ply .stl)")
         ->required();
-    sub->add_option("--warp", args->warp, "For a mesh file: bend | twist | pulse | stretch | rotate (default bend)");
+    sub->add_option("--warp", args->warp, "For a mesh file: bend | twist | pulse | stretch | rotate (default bend)")
+        ->check(CLI::IsMember({"bend", "twist", "pulse", "stretch", "rotate"}));
     sub->add_option("--steps", args->steps, "Time units of one out-and-back cycle")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000000));
@@ -224,6 +230,7 @@ void register_deform(CLI::App& root, int& result) {
         ->check(CLI::PositiveNumber);
     sub->add_option("--schedule", args->schedule,
                     "paper: update at t2 = t1 + floor(R/(kappa lambda)); every-step: at every time unit")
+        ->check(CLI::IsMember({"paper", "every-step"}))
         ->capture_default_str();
     sub->add_option("--kappa", args->kappa, "Step constant (paper: 468; practical default: 32)")
         ->capture_default_str()
@@ -234,6 +241,7 @@ void register_deform(CLI::App& root, int& result) {
                     "Output directory: mesh_NNNNN.<format> per time unit, mesh.pvd (vtp), log.csv, summary.json, "
                     "quality.png");
     sub->add_option("--format", args->format, "Mesh files: vtp (ParaView series with quality fields) | ply | off")
+        ->check(CLI::IsMember({"vtp", "ply", "off"}))
         ->capture_default_str();
     sub->add_option("--every", args->every, "Write the mesh every K time units")
         ->capture_default_str()
@@ -250,7 +258,7 @@ void register_deform(CLI::App& root, int& result) {
                   "Check the invariants after every update; fail (exit 1) on any violation, "
                   "self-intersection or inverted triangle");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("deform", [&] { run_deform_cmd(*args); }); });
+    sub->callback([args, &result] { result = guarded("deform", [&](RunContext& ctx) { run_deform_cmd(*args, ctx); }); });
 }
 
 }  // namespace dynmesh::cli

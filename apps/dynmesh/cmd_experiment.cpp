@@ -33,10 +33,13 @@ struct SampleArgs {
     std::uint64_t seed = 1;
 };
 
-void run_sample(const SampleArgs& a) {
-    Progress progress("sample", a.common.quiet);
+void run_sample(const SampleArgs& a, RunContext& ctx) {
     const auto surface = make_surface(a.surface);
-    DYNMESH_CHECK(a.samples >= 4, "--samples must be at least 4");
+    require_writable_mesh_extension(a.output);
+    RunOutputs out(a.common, {});
+    const std::filesystem::path mesh_out = out.file(a.output, "-o");
+    ctx.inputs_begin();
+    Progress progress("sample", a.common.quiet);
     progress.stage("sampling " + surface->spec());
     const std::vector<Point3> pts = surface->sample_uniform(a.samples, a.seed);
     progress.stage("meshing");
@@ -57,8 +60,9 @@ void run_sample(const SampleArgs& a) {
     rep["vertices"] = mesh.n_vertices();
     rep["faces"] = mesh.n_faces();
     progress.stage("writing " + a.output);
-    write_mesh(mesh, a.output);
-    write_report(a.common, rep);
+    write_mesh(mesh, mesh_out);
+    out.report(rep);
+    out.commit();
     std::cout << "sample: " << surface->spec() << ", " << a.samples << " samples -> "
               << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces (" << a.method
               << ")\n  wrote " << a.output << "\n";
@@ -155,7 +159,8 @@ std::string safe_name(std::string s) {
     return s;
 }
 
-nlohmann::json run_case(const ExperimentArgs& a, const std::string& name, const ImplicitSurface* surface,
+nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& out_dir,
+                        const std::string& name, const ImplicitSurface* surface,
                         const SurfaceMesh* given, Progress& progress) {
     const FlipRule rule = parse_flip_rule(a.criterion);
     RowStats rows[3];
@@ -178,8 +183,8 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::string& name, const 
         flips_per_vertex.add(double(r.flip.flips) / double(mesh.n_vertices()));
         shared.add(100.0 * r.shared_edge_fraction);
         seconds.add(r.flip.seconds);
-        if (seed == 1 && !a.out_dir.empty()) {
-            const std::filesystem::path dir(a.out_dir);
+        if (seed == 1 && !out_dir.empty()) {
+            const std::filesystem::path& dir = out_dir;
             const std::string base = safe_name(name);
             write_histograms(dir / (base + "_histograms.csv"), r);
             write_mesh(mesh, dir / (base + "_initial.ply"));
@@ -242,23 +247,26 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::string& name, const 
     return j;
 }
 
-void run_experiment(const ExperimentArgs& a) {
-    check_report_path(a.common, a.meshes);
+void run_experiment(const ExperimentArgs& a, RunContext& ctx) {
+    for (const std::string& spec : a.surfaces) (void)make_surface(spec);  // usage errors first
+    RunOutputs out(a.common, {a.meshes.begin(), a.meshes.end()});
+    const std::filesystem::path out_dir = a.out_dir.empty() ? std::filesystem::path{} : out.directory(a.out_dir, "--out");
+    ctx.inputs_begin();
     Progress progress("experiment", a.common.quiet);
-    if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
     nlohmann::json cases = nlohmann::json::array();
     for (const std::string& spec : a.surfaces) {
         const auto surface = make_surface(spec);
         const std::string name = surface->spec() + ", " + std::to_string(a.samples) + " uniform samples";
-        cases.push_back(run_case(a, name, surface.get(), nullptr, progress));
+        cases.push_back(run_case(a, out_dir, name, surface.get(), nullptr, progress));
     }
     for (const std::string& file : a.meshes) {
         progress.stage("reading " + file);
         const SurfaceMesh mesh = load_mesh(file);
         require_closed_manifold(mesh, file);
-        cases.push_back(run_case(a, std::filesystem::path(file).filename().string(), nullptr, &mesh, progress));
+        cases.push_back(run_case(a, out_dir, std::filesystem::path(file).filename().string(), nullptr, &mesh, progress));
     }
-    write_report(a.common, {{"command", "experiment"}, {"criterion", a.criterion}, {"cases", cases}});
+    out.report({{"command", "experiment"}, {"criterion", a.criterion}, {"cases", cases}});
+    out.commit();
     if (!a.out_dir.empty()) std::cout << "\nwrote meshes and histogram CSVs to " << a.out_dir << "\n";
 }
 
@@ -269,7 +277,9 @@ void register_sample(CLI::App& root, int& result) {
     CLI::App* sub = root.add_subcommand(
         "sample", "Sample an analytic surface uniformly and mesh the samples");
     sub->add_option("--surface", args->surface, "sphere[:R], ellipsoid:a,b,c or torus:R,r")->capture_default_str();
-    sub->add_option("--samples", args->samples, "Number of samples")->capture_default_str();
+    sub->add_option("--samples", args->samples, "Number of samples")
+        ->check(CLI::Range(std::size_t{4}, std::size_t{100000000}))
+        ->capture_default_str();
     sub->add_option("--seed", args->seed, "Random seed")->capture_default_str();
     sub->add_option("--method", args->method,
                     "rdt: restricted Delaunay (surface known); advancing-front: reconstruction")
@@ -277,7 +287,7 @@ void register_sample(CLI::App& root, int& result) {
         ->capture_default_str();
     sub->add_option("-o,--output", args->output, "Output mesh")->required();
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("sample", [&] { run_sample(*args); }); });
+    sub->callback([args, &result] { result = guarded("sample", [&](RunContext& ctx) { run_sample(*args, ctx); }); });
 }
 
 void register_experiment(CLI::App& root, int& result) {
@@ -285,8 +295,11 @@ void register_experiment(CLI::App& root, int& result) {
     CLI::App* sub = root.add_subcommand(
         "experiment",
         "Reproduce the edge-flip paper's tables: build, worsen and smooth meshes, compare with the paper");
-    sub->add_option("--samples", args->samples, "Samples per analytic surface")->capture_default_str();
+    sub->add_option("--samples", args->samples, "Samples per analytic surface")
+        ->check(CLI::Range(std::size_t{100}, std::size_t{100000000}))
+        ->capture_default_str();
     sub->add_option("--seeds", args->seeds, "Seeds 1..N; statistics are averaged across seeds")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1000}))
         ->capture_default_str();
     sub->add_option("--surface", args->surfaces, "Analytic surfaces (repeatable)")->capture_default_str();
     sub->add_option("--mesh", args->meshes, "Real meshes to worsen and smooth as well (repeatable)");
@@ -295,7 +308,7 @@ void register_experiment(CLI::App& root, int& result) {
         ->capture_default_str();
     sub->add_option("--out", args->out_dir, "Directory for meshes and histogram CSVs (seed 1)");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("experiment", [&] { run_experiment(*args); }); });
+    sub->callback([args, &result] { result = guarded("experiment", [&](RunContext& ctx) { run_experiment(*args, ctx); }); });
 }
 
 }  // namespace dynmesh::cli

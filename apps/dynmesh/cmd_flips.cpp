@@ -1,6 +1,6 @@
 /// `dynmesh flip` and `dynmesh worsen`: edge-flip smoothing and the paper's worsening.
+#include <cctype>
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -11,6 +11,7 @@
 #include "dynmesh/flips/flip_smooth.hpp"
 #include "dynmesh/flips/worsen.hpp"
 #include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/mesh/check.hpp"
 
 namespace dynmesh::cli {
@@ -26,38 +27,20 @@ struct FlipArgs {
     bool check = false;
 };
 
-/// Reads whitespace-separated vertex indices; every one must name a vertex of the mesh.
-std::vector<Vertex> read_vertex_list(const std::string& path, const SurfaceMesh& mesh) {
-    std::ifstream in(path);
-    if (!in) throw IoError(path + ": cannot open");
+/// The --vertices file as vertex handles.
+std::vector<Vertex> read_vertices(const std::string& path, const SurfaceMesh& mesh) {
     std::vector<Vertex> out;
-    std::string token;
-    for (std::size_t k = 1; in >> token; ++k) {
-        std::size_t pos = 0;
-        unsigned long long v = 0;
-        try {
-            v = std::stoull(token, &pos);
-        } catch (const std::exception&) {
-            pos = 0;
-        }
-        if (pos != token.size() || token[0] == '-')
-            throw IoError(path + ": entry " + std::to_string(k) + " ('" + token.substr(0, 20) +
-                          "') is not a vertex index");
-        if (v >= mesh.n_vertices())
-            throw IoError(path + ": entry " + std::to_string(k) + ": vertex " + token +
-                          " does not exist (the mesh has " + std::to_string(mesh.n_vertices()) +
-                          " vertices)");
-        out.push_back(Vertex(static_cast<std::uint32_t>(v)));
-    }
-    if (out.empty()) throw IoError(path + ": no vertex index in the file");
+    for (std::uint32_t v : read_vertex_list(path, mesh.n_vertices())) out.push_back(Vertex(v));
     return out;
 }
 
-void run_flip(const FlipArgs& a) {
+void run_flip(const FlipArgs& a, RunContext& ctx) {
     using Clock = std::chrono::steady_clock;
-    ensure_not_same_file(a.input, a.output);
-    check_report_path(a.common, {a.input, a.output, a.vertices_file});
     const FlipRule rule = parse_flip_rule(a.criterion);
+    require_writable_mesh_extension(a.output);
+    RunOutputs out(a.common, {a.input, a.vertices_file});
+    const std::filesystem::path mesh_out = out.file(a.output, "-o");
+    ctx.inputs_begin();
     Progress progress("flip", a.common.quiet);
     progress.stage("reading " + a.input);
     auto t0 = Clock::now();
@@ -77,7 +60,7 @@ void run_flip(const FlipArgs& a) {
     if (a.vertices_file.empty()) {
         r = flip_all(mesh, opt);
     } else {
-        const std::vector<Vertex> V = read_vertex_list(a.vertices_file, mesh);
+        const std::vector<Vertex> V = read_vertices(a.vertices_file, mesh);
         const LocalFlipReport lr =
             flip_local(mesh, V, {.rule = rule,
                                  .feature_angle_deg = a.feature_angle_deg,
@@ -120,7 +103,7 @@ void run_flip(const FlipArgs& a) {
             SurfaceMesh again = mesh;
             second = flip_all(again, opt).flips;
         } else {
-            for (Vertex v : read_vertex_list(a.vertices_file, mesh))
+            for (Vertex v : read_vertices(a.vertices_file, mesh))
                 for (Halfedge h : mesh.outgoing_halfedges(v))
                     second += is_flippable(mesh, SurfaceMesh::edge(h), rule, a.feature_angle_deg);
         }
@@ -134,11 +117,13 @@ void run_flip(const FlipArgs& a) {
                         {"unchecked_balls", d.unchecked_balls}};
         if (!c.ok()) std::cerr << c.summary("dynmesh flip: check: ");
     }
+    require_valid_output(mesh, "flip");
     progress.stage("writing " + a.output);
     t0 = Clock::now();
-    write_mesh(mesh, a.output);
+    write_mesh(mesh, mesh_out);
     rep["seconds_write"] = seconds_since(t0);
-    write_report(a.common, rep);
+    out.report(rep);
+    out.commit();
     std::cout << "flip: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces, "
               << r.flips << " flips (" << to_string(rule) << "), " << r.checks << " checks, "
               << r.seconds << " s"
@@ -148,8 +133,8 @@ void run_flip(const FlipArgs& a) {
                       : ", NOT converged (window still growing after the last round, or flip cap)")
               << "\n  wrote " << a.output << "\n";
     if (!check_ok)
-        throw InternalError(r.converged ? "--check failed: the flipped mesh violates an invariant"
-                                        : "--check failed: flipping did not converge");
+        throw CheckFailed(r.converged ? "the flipped mesh violates an invariant (see the report's 'check')"
+                                      : "flipping did not converge");
 }
 
 struct WorsenArgs {
@@ -158,9 +143,11 @@ struct WorsenArgs {
     WorsenOptions options;
 };
 
-void run_worsen(const WorsenArgs& a) {
-    ensure_not_same_file(a.input, a.output);
-    check_report_path(a.common, {a.input, a.output});
+void run_worsen(const WorsenArgs& a, RunContext& ctx) {
+    require_writable_mesh_extension(a.output);
+    RunOutputs out(a.common, {a.input});
+    const std::filesystem::path mesh_out = out.file(a.output, "-o");
+    ctx.inputs_begin();
     Progress progress("worsen", a.common.quiet);
     progress.stage("reading " + a.input);
     SurfaceMesh mesh = load_mesh(a.input);
@@ -169,9 +156,10 @@ void run_worsen(const WorsenArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const WorsenReport r = worsen(mesh, a.options);
     const double secs = seconds_since(t0);
+    require_valid_output(mesh, "worsen");
     progress.stage("writing " + a.output);
-    write_mesh(mesh, a.output);
-    write_report(a.common, {{"command", "worsen"},
+    write_mesh(mesh, mesh_out);
+    out.report({{"command", "worsen"},
                             {"input", a.input},
                             {"output", a.output},
                             {"vertices", mesh.n_vertices()},
@@ -182,6 +170,7 @@ void run_worsen(const WorsenArgs& a) {
                             {"rounds", a.options.rounds},
                             {"seed", a.options.seed},
                             {"seconds_worsen", secs}});
+    out.commit();
     std::cout << "worsen: " << r.flips << " random flips kept, " << r.rejected
               << " undone (dihedral floor " << a.options.min_dihedral_deg << " deg)\n  wrote "
               << a.output << "\n";
@@ -213,7 +202,7 @@ void register_flip(CLI::App& root, int& result) {
                     "doubling-window local method");
     sub->add_flag("--check", args->check, "Verify the result (manifold, nothing flippable)");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("flip", [&] { run_flip(*args); }); });
+    sub->callback([args, &result] { result = guarded("flip", [&](RunContext& ctx) { run_flip(*args, ctx); }); });
 }
 
 void register_worsen(CLI::App& root, int& result) {
@@ -232,7 +221,7 @@ void register_worsen(CLI::App& root, int& result) {
         ->check(finite_number() & CLI::Range(0.0, 180.0))
         ->capture_default_str();
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("worsen", [&] { run_worsen(*args); }); });
+    sub->callback([args, &result] { result = guarded("worsen", [&](RunContext& ctx) { run_worsen(*args, ctx); }); });
 }
 
 }  // namespace dynmesh::cli

@@ -11,12 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -32,6 +27,7 @@
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/point_set_io.hpp"
 #include "dynmesh/io/simplex_mesh_io.hpp"
+#include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/dyn_offcenter.hpp"
@@ -83,13 +79,6 @@ std::string fmt_double(double v) {
     return buf;
 }
 
-/// Text of a line with its `#` comment removed.
-std::string strip_comment(const std::string& line) { return line.substr(0, line.find('#')); }
-bool is_blank(const std::string& s) {
-    return std::all_of(s.begin(), s.end(),
-                       [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
-}
-
 /// Parses a whole token as a double; nullopt if it is not one.
 std::optional<double> parse_number(const std::string& t) {
     std::size_t used = 0;
@@ -103,52 +92,13 @@ std::optional<double> parse_number(const std::string& t) {
     return v;
 }
 
-/// 1-based line numbers of the point lines of a point file (as read_point_set reads it:
-/// `#` comments and blank lines skipped, the `.node` header skipped).
-std::vector<std::size_t> point_lines(const std::string& path) {
-    std::ifstream in(path);
-    std::vector<std::size_t> out;
-    std::string line;
-    bool header = std::filesystem::path(path).extension() == ".node";
-    for (std::size_t ln = 1; std::getline(in, line); ++ln) {
-        if (is_blank(strip_comment(line))) continue;
-        if (header) {
-            header = false;
-            continue;
-        }
-        out.push_back(ln);
-    }
-    return out;
-}
-
-/// Parses `+ x y [z]` / `- x y [z]` lines with D coordinates (`#` comments and blank lines
-/// ignored).
+/// The update script as operations on D-dimensional points.
 template <int D>
 std::vector<Op<D>> read_ops(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw IoError(path + ": cannot open the ops file");
-    const std::string form = D == 2 ? "'+ x y' or '- x y'" : "'+ x y z' or '- x y z'";
     std::vector<Op<D>> ops;
-    std::string line;
-    for (std::size_t ln = 1; std::getline(in, line); ++ln) {
-        const std::string body = strip_comment(line);
-        if (is_blank(body)) continue;
-        std::istringstream ss(body);
-        std::vector<std::string> tok;
-        for (std::string t; ss >> t;) tok.push_back(t);
-        const std::string where = path + ":" + std::to_string(ln) + ": ";
-        if (tok.empty() || (tok[0] != "+" && tok[0] != "-") ||
-            tok.size() != static_cast<std::size_t>(D) + 1)
-            throw IoError(where + "expected " + form + " (--dim " + std::to_string(D) +
-                          "), got '" + body + "'");
-        Op<D> op{.insert = tok[0] == "+", .p = {}, .line = ln};
-        for (std::size_t k = 0; k < static_cast<std::size_t>(D); ++k) {
-            const std::string& t = tok[k + 1];
-            const std::optional<double> v = parse_number(t);
-            if (!v) throw IoError(where + "not a number: '" + t + "'");
-            if (!std::isfinite(*v)) throw IoError(where + "non-finite coordinate '" + t + "'");
-            op.p[k] = *v;
-        }
+    for (const PointUpdate& u : read_update_script(path, D)) {
+        Op<D> op{.insert = u.insert, .p = {}, .line = u.line};
+        for (std::size_t k = 0; k < static_cast<std::size_t>(D); ++k) op.p[k] = u.point[k];
         ops.push_back(op);
     }
     return ops;
@@ -368,96 +318,40 @@ MeshResult describe_mesh(OctMesh3 mesh, const std::optional<OffCenterMesh2>& /*o
     return r;
 }
 
-/// The plotting script next to the sources, when it is there.
-std::filesystem::path plot_script() {
-#ifdef DYNMESH_SCRIPTS_DIR
-    return std::filesystem::path(DYNMESH_SCRIPTS_DIR) / "plot_mesh2d.py";
-#else
-    return {};
-#endif
+/// Draws the 2D meshes `before` and `after` side by side into `png` (a staging path) with
+/// the bundled plot_mesh2d.py, from .node/.ele files in a private temporary directory that is
+/// removed afterwards. \throw IoError naming --png and the cause if drawing fails.
+void draw_before_after(const MeshResult& before, const MeshResult& after,
+                       const std::filesystem::path& png, const std::string& png_arg) {
+    namespace fs = std::filesystem;
+    std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
+    struct Cleanup {
+        fs::path dir;
+        ~Cleanup() {
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+        }
+    } cleanup{tmpl};
+    for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
+        (void)write_simplex_mesh(cleanup.dir / name, SimplexMeshView{.dimension = 2,
+                                                                     .points = m->points,
+                                                                     .simplices = m->simplices});
+    run_plot_script("plot_mesh2d.py",
+                    {png.string(), (cleanup.dir / "before.node").string(),
+                     (cleanup.dir / "after.node").string()},
+                    "--png " + png_arg);
 }
 
-/// A drawing of two 2D meshes side by side, made in a private temporary directory and moved
-/// to its destination by commit(); the directory is removed on destruction.
-class BeforeAfterPicture {
-public:
-    /// Draws `before` and `after` (written as before.node/.ele and after.node/.ele) with
-    /// scripts/plot_mesh2d.py under /usr/bin/python3, without a shell.
-    /// \throw IoError naming the cause (the script's last error line) if drawing fails.
-    BeforeAfterPicture(const MeshResult& before, const MeshResult& after, const std::string& png)
-        : png_(png) {
-        namespace fs = std::filesystem;
-        const fs::path script = plot_script();
-        if (script.empty() || !fs::exists(script))
-            throw IoError("--png: the plotting script plot_mesh2d.py is not available");
-        if (!fs::exists("/usr/bin/python3"))
-            throw IoError("--png: needs /usr/bin/python3 with matplotlib (Debian python3-matplotlib)");
-        std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
-        dir_ = tmpl;
-        for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
-            (void)write_simplex_mesh(dir_ / name, SimplexMeshView{.dimension = 2,
-                                                                  .points = m->points,
-                                                                  .simplices = m->simplices});
-        const std::vector<std::string> args = {"/usr/bin/python3", script.string(),
-                                               (dir_ / "picture.png").string(),
-                                               (dir_ / "before.node").string(),
-                                               (dir_ / "after.node").string()};
-        std::vector<char*> argv;
-        for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-        argv.push_back(nullptr);
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        const std::string log = (dir_ / "plot.log").string();
-        posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-        posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-        pid_t pid = 0;
-        const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-        posix_spawn_file_actions_destroy(&actions);
-        int status = 0;
-        const bool ok = rc == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
-                        WEXITSTATUS(status) == 0 && fs::exists(dir_ / "picture.png");
-        if (!ok) {
-            std::string last;
-            std::ifstream in(log);
-            for (std::string line; std::getline(in, line);)
-                if (!line.empty()) last = line;
-            throw IoError("--png " + png + ": drawing failed" +
-                          (last.empty() ? std::string(" (needs /usr/bin/python3 with matplotlib, "
-                                                      "Debian python3-matplotlib)")
-                                        : ": " + last));
-        }
-    }
-    BeforeAfterPicture(const BeforeAfterPicture&) = delete;
-    BeforeAfterPicture& operator=(const BeforeAfterPicture&) = delete;
-    ~BeforeAfterPicture() {
-        std::error_code ec;
-        std::filesystem::remove_all(dir_, ec);
-    }
-
-    /// Moves the picture to its destination atomically (a copy next to it, then a rename).
-    void commit() const {
-        namespace fs = std::filesystem;
-        const fs::path target = fs::absolute(png_);
-        const fs::path tmp = target.parent_path() /
-                             (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
-        std::error_code ec;
-        fs::copy_file(dir_ / "picture.png", tmp, fs::copy_options::overwrite_existing, ec);
-        if (!ec) fs::rename(tmp, target, ec);
-        if (ec) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw IoError("--png " + png_ + ": cannot write: " + ec.message());
-        }
-    }
-
-private:
-    std::string png_;
-    std::filesystem::path dir_;
+/// Where the run writes: the staging paths of -o (a .node/.ele pair shares one base) and --png.
+struct QmeshOutputs {
+    RunOutputs& set;
+    std::filesystem::path mesh;  ///< the path to give the writer
+    std::filesystem::path png;   ///< empty without --png
 };
 
 template <int D>
-void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
+void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, QmeshOutputs& out) {
     constexpr auto kD = static_cast<std::size_t>(D);
     const std::string ext = lower_ext(a.output);
     const bool simplex_out = contains(kSimplexExtensions, ext);
@@ -486,7 +380,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
     // Validate the initial points with their line numbers before building anything.
     {
         const DynQuadtree<D> probe(domain);
-        const std::vector<std::size_t> lines = point_lines(a.points);
+        const std::vector<std::size_t>& lines = input.lines;
         const auto where = [&](std::size_t i) {
             return a.points + ":" + (i < lines.size() ? std::to_string(lines[i]) : "?") +
                    ": point " + fmt_point<D>(pts[i]);
@@ -618,6 +512,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
                           {"ops", op_times}};
     rep.update(mesh.extra);
     if (!a.ops.empty()) rep["ops_file"] = a.ops;
+    std::vector<std::string> check_problems;
     if (a.check) {
         progress.stage("checking");
         // DynQuadMesh's check includes the tree's; DynOffCenterMesh2's does not.
@@ -626,91 +521,88 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter) {
             if (off)
                 for (std::string& e : off->check_invariants()) bad.push_back(std::move(e));
         for (std::string& s : mesh.problems) bad.push_back(std::move(s));
-        if (!bad.empty())
-            throw InternalError("--check failed (" + std::to_string(bad.size()) +
-                                " problems): " + bad.front());
-        rep["check"] = {{"violations", 0}};
+        rep["check"] = {{"violations", bad.size()}, {"problems", bad}};
+        check_problems = std::move(bad);
     }
 
-    // The picture is drawn before any output is written, so a failure leaves no output.
-    std::optional<BeforeAfterPicture> picture;
     if (before) {
         progress.stage("drawing " + a.png);
-        picture.emplace(*before, mesh, a.png);
+        draw_before_after(*before, mesh, out.png, a.png);
     }
 
     progress.stage("writing " + a.output);
     std::vector<std::string> written;
     if (simplex_out) {
         const SimplexMeshView view{.dimension = D, .points = mesh.points, .simplices = mesh.simplices};
-        for (const auto& f : write_simplex_mesh(a.output, view)) written.push_back(f.string());
+        (void)write_simplex_mesh(out.mesh, view);
     } else {
         TriangleSoup soup;
         soup.points = mesh.points;
         soup.triangles.reserve(mesh.simplices.size());
         for (const auto& s : mesh.simplices) soup.triangles.push_back({s[0], s[1], s[2]});
-        write_soup(soup, a.output);
-        written.push_back(a.output);
+        write_soup(soup, out.mesh);
     }
-    if (picture) {
-        picture->commit();
-        written.push_back(a.png);
+    out.set.report(rep);
+    out.set.commit();
+    if (ext == ".node" || ext == ".ele") {
+        std::filesystem::path base = a.output;
+        base.replace_extension();
+        written = {base.string() + ".node", base.string() + ".ele"};
+    } else {
+        written = {a.output};
     }
-    write_report(a.common, rep);
+    if (!a.png.empty()) written.push_back(a.png);
     std::cout << tree_name << ": " << tree.size() << " points, " << tree.leaf_count()
               << " leaves, " << ops.size() << " updates; mesh " << mesh.points.size()
               << " vertices, " << mesh.simplices.size()
               << (D == 2 ? " triangles, angles " : " tetrahedra, dihedral angles ")
               << mesh.min_angle << " .. " << mesh.max_angle << " deg\n  wrote " << join(written, " and ")
               << "\n";
+    if (!check_problems.empty())
+        throw CheckFailed(std::to_string(check_problems.size()) + " problems: " + check_problems.front());
 }
 
-void run_quadtree(const QuadtreeArgs& a) {
-    DYNMESH_CHECK(a.dim == 2 || a.dim == 3,
-                  "--dim: must be 2 or 3, not " + std::to_string(a.dim));
+void run_quadtree(const QuadtreeArgs& a, RunContext& ctx) {
     const bool offcenter = a.rho_option != nullptr && a.rho_option->count() > 0;
-    if (offcenter) {
-        DYNMESH_CHECK(a.dim == 2, "--rho: the off-center mesher is 2D only (got --dim 3)");
-        DYNMESH_CHECK(a.rho > std::sqrt(2.0), "--rho " + fmt_double(a.rho) +
-                                                  ": rho must be > sqrt(2) ~ 1.41421356");
-    }
+    if (offcenter && a.dim != 2) throw UsageError("--rho: the off-center mesher is 2D only (got --dim 3)");
     if (!a.png.empty()) {
-        DYNMESH_CHECK(a.dim == 2, "--png: pictures are drawn for 2D meshes only (got --dim 3)");
-        DYNMESH_CHECK(lower_ext(a.png) == ".png", "--png " + a.png + ": expected a .png file");
-        const std::filesystem::path dir = std::filesystem::absolute(a.png).parent_path();
-        if (!std::filesystem::is_directory(dir))
-            throw IoError("--png " + a.png + ": the directory " + dir.string() + " does not exist");
+        if (a.dim != 2) throw UsageError("--png: pictures are drawn for 2D meshes only (got --dim 3)");
+        if (lower_ext(a.png) != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
+        if (const auto why = plotting_unavailable("plot_mesh2d.py")) throw UsageError("--png: " + *why);
     }
     const std::string ext = lower_ext(a.output);
     std::vector<std::string> allowed = kSimplexExtensions;
     if (a.dim == 2) allowed.insert(allowed.end(), kSoupExtensions2D.begin(), kSoupExtensions2D.end());
     if (!contains(allowed, ext))
-        throw InvalidInput("-o " + a.output + ": unsupported extension for --dim " +
-                           std::to_string(a.dim) + " (use " + join(allowed) + ")");
-    std::vector<std::string> outputs = {a.output};
+        throw UsageError("-o " + a.output + ": unsupported extension for --dim " +
+                         std::to_string(a.dim) + " (use " + join(allowed) + ")");
+    RunOutputs set(a.common, {a.points, a.ops});
+    QmeshOutputs out{set, {}, {}};
     if (ext == ".node" || ext == ".ele") {
         std::filesystem::path base = a.output;
         base.replace_extension();
-        outputs = {base.string() + ".node", base.string() + ".ele"};
+        out.mesh = set.file_set(base, {".node", ".ele"}, "-o");
+        out.mesh += ".node";
+    } else {
+        out.mesh = set.file(a.output, "-o");
     }
-    if (!a.png.empty()) outputs.push_back(a.png);
-    for (const std::string& out : outputs) {
-        ensure_not_same_file(a.points, out);
-        if (!a.ops.empty()) ensure_not_same_file(a.ops, out);
+    if (!a.png.empty()) out.png = set.file(a.png, "--png");
+    if (a.domain != "auto") {  // a malformed --domain is a usage error
+        if (a.dim == 2)
+            (void)choose_domain<2>(a.domain, {}, {}, a.points);
+        else
+            (void)choose_domain<3>(a.domain, {}, {}, a.points);
     }
-    std::vector<std::string> files = outputs;
-    files.push_back(a.points);
-    files.push_back(a.ops);
-    check_report_path(a.common, files);
+    ctx.inputs_begin();
 
     const PointSet input = read_point_set(a.points);
     if (input.dimension != a.dim)
         throw InvalidInput(a.points + ": a " + std::to_string(input.dimension) +
                            "D point set, but --dim is " + std::to_string(a.dim));
     if (a.dim == 2)
-        run_dim<2>(a, input, offcenter);
+        run_dim<2>(a, input, offcenter, out);
     else
-        run_dim<3>(a, input, offcenter);
+        run_dim<3>(a, input, offcenter, out);
 }
 
 }  // namespace
@@ -736,13 +628,21 @@ void register_quadtree(CLI::App& root, int& result) {
                     "'- x y [z]' erases (# comments); each update is timed in the report");
     sub->add_option("--dim", args->dim, "Dimension: 2 (quadtree, triangles) or 3 (octree, "
                                         "tetrahedra)")
+        ->check(CLI::IsMember({2, 3}))
         ->capture_default_str();
     args->rho_option =
         sub->add_option("--rho", args->rho,
                         "2D only: off-center (Har-Peled-Ungor) Delaunay mesh with radius-edge "
                         "ratio <= RHO (> sqrt(2); sqrt(2) ~ 20.7 deg) instead of the quadtree "
                         "postprocess, maintained through --ops like it")
-            ->check(finite_number());
+            ->check(finite_number())
+            ->check(CLI::Validator(
+                [](std::string& v) {
+                    return std::stod(v) > std::sqrt(2.0)
+                               ? std::string()
+                               : "rho must be > sqrt(2) ~ 1.41421356, got " + v;
+                },
+                "> sqrt(2)"));
     sub->add_option("--domain", args->domain,
                     "Domain box 'X0,Y0,W' (2D) or 'X0,Y0,Z0,W' (3D); every point must lie in "
                     "its middle third. Or 'auto': centred on the bounding box of the points and "
@@ -757,7 +657,7 @@ void register_quadtree(CLI::App& root, int& result) {
                   "the box) and the angle (2D) or dihedral-angle (3D) bounds");
     sub->alias("quadtree");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("qmesh", [&] { run_quadtree(*args); }); });
+    sub->callback([args, &result] { result = guarded("qmesh", [&](RunContext& ctx) { run_quadtree(*args, ctx); }); });
 }
 
 }  // namespace dynmesh::cli

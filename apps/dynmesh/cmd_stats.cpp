@@ -29,15 +29,16 @@ std::string fmt(const Summary& s) {
     return buf;
 }
 
-void run_stats(const StatsArgs& a) {
-    check_report_path(a.common, {a.mesh, a.against});
+void run_stats(const StatsArgs& a, RunContext& ctx) {
+    std::unique_ptr<ImplicitSurface> surface;
+    if (!a.surface.empty()) surface = make_surface(a.surface);
+    if (a.hausdorff && !surface && a.against.empty())
+        throw UsageError("--hausdorff needs --surface or --against");
+    RunOutputs out(a.common, {a.mesh, a.against});
+    ctx.inputs_begin();
     Progress progress("stats", a.common.quiet);
     progress.stage("reading " + a.mesh);
     const SurfaceMesh mesh = load_mesh(a.mesh);
-    std::unique_ptr<ImplicitSurface> surface;
-    if (!a.surface.empty()) surface = make_surface(a.surface);
-    DYNMESH_CHECK(!a.hausdorff || surface || !a.against.empty(),
-                  "--hausdorff needs --surface or --against");
     QualityOptions opt;
     opt.surface = surface.get();
     opt.hausdorff = a.hausdorff && surface != nullptr;
@@ -63,7 +64,8 @@ void run_stats(const StatsArgs& a) {
         rep["hausdorff_to_mesh"] = h.distance;
         rep["against"] = a.against;
     }
-    write_report(a.common, rep);
+    out.report(rep);
+    out.commit();
 
     std::cout << a.mesh << ": " << q.vertices << " vertices, " << q.faces << " faces, "
               << q.edges << " edges, Euler " << q.euler << (q.closed ? ", closed" : ", open (")
@@ -71,6 +73,10 @@ void run_stats(const StatsArgs& a) {
     std::cout << "                          mean       sd      min      max\n";
     std::cout << "  angle (deg)         " << fmt(q.angle_deg) << "\n";
     std::cout << "  radius-edge ratio   " << fmt(q.radius_edge) << "\n";
+    if (q.degenerate_faces > 0)
+        std::cout << "  " << q.degenerate_faces
+                  << " degenerate (zero-area) faces: their radius-edge ratio is infinite; mean and "
+                     "sd are over the other faces\n";
     std::cout << "  180 - dihedral (deg)" << fmt(q.dihedral_dev_deg) << "\n";
     if (q.normal_dev_deg) std::cout << "  normal dev. (deg)   " << fmt(*q.normal_dev_deg) << "\n";
     if (q.hausdorff_to_surface)
@@ -92,11 +98,28 @@ struct CheckArgs {
     bool closed = false, self_intersections = false;
 };
 
-void run_check(const CheckArgs& a) {
-    check_report_path(a.common, {a.mesh});
+void run_check(const CheckArgs& a, RunContext& ctx) {
+    RunOutputs out(a.common, {a.mesh});
+    ctx.inputs_begin();
     Progress progress("check", a.common.quiet);
     progress.stage("reading " + a.mesh);
-    const SurfaceMesh mesh = load_mesh(a.mesh);
+    // A malformed file is a bad input (exit 3); triangles that do not form an oriented
+    // 2-manifold are what `check` reports (exit 1).
+    const TriangleSoup soup = read_soup(a.mesh);
+    SurfaceMesh mesh;
+    try {
+        mesh = SurfaceMesh::from_soup(soup);
+    } catch (const TopologyError& e) {
+        std::string why = e.what();
+        if (why.starts_with("from_soup: ")) why = why.substr(11);
+        out.report({{"command", "check"}, {"mesh", a.mesh}, {"ok", false}, {"problems", {why}},
+                    {"n_problems", 1}, {"vertices", soup.points.size()},
+                    {"faces", soup.triangles.size()}});
+        out.commit();
+        std::cout << a.mesh << ": " << soup.points.size() << " V, " << soup.triangles.size()
+                  << " F\n  problem: " << why << "\n";
+        throw CheckFailed(a.mesh + ": not an oriented 2-manifold: " + why);
+    }
     progress.stage("checking");
     const MeshCheckReport r = check_mesh(mesh, {.require_closed = a.closed});
     nlohmann::json rep = {{"command", "check"},      {"mesh", a.mesh},
@@ -112,14 +135,15 @@ void run_check(const CheckArgs& a) {
         si = count_self_intersections(mesh);
         rep["self_intersections"] = si;
     }
-    write_report(a.common, rep);
+    out.report(rep);
+    out.commit();
     std::cout << a.mesh << ": " << r.vertices << " V, " << r.edges << " E, " << r.faces
               << " F, Euler " << r.euler << ", " << r.components << " component(s), "
               << (r.closed ? "closed" : std::to_string(r.boundary_edges) + " boundary edges") << "\n";
     std::cout << r.summary("  problem: ");
     if (a.self_intersections) std::cout << "  self-intersecting face pairs: " << si << "\n";
     if (!r.ok() || si > 0)
-        throw TopologyError(a.mesh + ": " + std::to_string(r.n_problems + si) + " problem(s) found");
+        throw CheckFailed(a.mesh + ": " + std::to_string(r.n_problems + si) + " problem(s) found");
     std::cout << "  ok\n";
 }
 
@@ -137,7 +161,7 @@ void register_stats(CLI::App& root, int& result) {
     sub->add_flag("--self-intersections", args->self_intersections, "Count self-intersecting face pairs");
     sub->add_flag("--histograms", args->histograms, "Print histograms of the angle deviations");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("stats", [&] { run_stats(*args); }); });
+    sub->callback([args, &result] { result = guarded("stats", [&](RunContext& ctx) { run_stats(*args, ctx); }); });
 }
 
 void register_check(CLI::App& root, int& result) {
@@ -148,7 +172,7 @@ void register_check(CLI::App& root, int& result) {
     sub->add_flag("--closed", args->closed, "Boundary edges count as problems");
     sub->add_flag("--self-intersections", args->self_intersections, "Also test self-intersections");
     add_common_options(*sub, args->common);
-    sub->callback([args, &result] { result = guarded("check", [&] { run_check(*args); }); });
+    sub->callback([args, &result] { result = guarded("check", [&](RunContext& ctx) { run_check(*args, ctx); }); });
 }
 
 }  // namespace dynmesh::cli

@@ -1,21 +1,42 @@
 /// dynmesh: dynamic meshing from the command line. One subcommand per job; see --help.
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "dynmesh/version.hpp"
 
 int main(int argc, char** argv) {
+    namespace cli = dynmesh::cli;
     CLI::App app{"dynmesh: meshes that stay good while the shape changes"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "dynmesh 0.1.0");
+    app.set_version_flag("--version", std::string("dynmesh ") + dynmesh::kVersion);
+    app.footer(cli::exit_code_help());
     int result = 0;
-    dynmesh::cli::register_flip(app, result);
-    dynmesh::cli::register_worsen(app, result);
-    dynmesh::cli::register_stats(app, result);
-    dynmesh::cli::register_check(app, result);
-    dynmesh::cli::register_sample(app, result);
-    dynmesh::cli::register_experiment(app, result);
-    dynmesh::cli::register_quadtree(app, result);
-    dynmesh::cli::register_deform(app, result);
-    CLI11_PARSE(app, argc, argv);
+    cli::register_flip(app, result);
+    cli::register_worsen(app, result);
+    cli::register_stats(app, result);
+    cli::register_check(app, result);
+    cli::register_sample(app, result);
+    cli::register_experiment(app, result);
+    cli::register_quadtree(app, result);
+    cli::register_deform(app, result);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // One line, the usage exit code of the contract.
+        std::string msg = e.what();
+        for (char& c : msg)
+            if (c == '\n') c = ' ';
+        std::cerr << "dynmesh: usage error: " << msg << " (see dynmesh --help)" << std::endl;
+        return cli::kExitUsage;
+    }
     return result;
 }

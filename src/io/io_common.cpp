@@ -66,41 +66,7 @@ void FileContext::fail_byte(std::size_t offset, const std::string& msg) const {
     throw IoError(name_ + ": byte offset " + std::to_string(offset) + ", " + msg);
 }
 
-namespace {
-
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
 std::string errno_text(int err) { return std::generic_category().message(err); }
-
-}  // namespace
-
-std::string load_file(const fs::path& path, const FileContext& ctx) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(path, ec);
-    if (st.type() == fs::file_type::not_found) ctx.fail("no such file");
-    if (ec) ctx.fail("cannot access the file: " + ec.message());
-    if (fs::is_directory(st)) ctx.fail("is a directory, not a file");
-    if (!fs::is_regular_file(st)) ctx.fail("is not a regular file");
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec) ctx.fail("cannot get the file size: " + ec.message());
-    errno = 0;
-    const FilePtr file(std::fopen(path.c_str(), "rb"));
-    if (!file) ctx.fail("cannot open the file: " + errno_text(errno));
-    std::string data;
-    try {
-        data.resize(static_cast<std::size_t>(size));
-    } catch (const std::bad_alloc&) {
-        ctx.fail("file of " + std::to_string(size) + " bytes does not fit in memory");
-    }
-    const std::size_t n = std::fread(data.data(), 1, data.size(), file.get());
-    if (n != data.size() || std::ferror(file.get()))
-        ctx.fail("read error after " + std::to_string(n) + " of " + std::to_string(size) +
-                 " bytes");
-    return data;
-}
 
 Point3 parse_point(Tokens& tokens, const FileContext& ctx, std::size_t line, const char* kind,
                    std::size_t index) {

@@ -28,6 +28,9 @@ std::string lower_extension(const std::filesystem::path& p);
 /// "a, b, c".
 std::string join_list(const std::vector<std::string>& items);
 
+/// The system's text for an errno value.
+std::string errno_text(int err);
+
 /// Names one file in every error message about it.
 class FileContext {
 public:
@@ -45,18 +48,22 @@ private:
     std::string name_;
 };
 
-/// The whole content of a regular file.
-/// \throw IoError when the file is missing, not a regular file, or cannot be read.
-std::string load_file(const std::filesystem::path& path, const FileContext& ctx);
+/// The whole content of a regular file of at most `max_bytes` (read_input_file of
+/// input_file.hpp, with the caller's context).
+/// \throw IoError when the file is missing, not a regular file, too large or unreadable.
+std::string load_file(const std::filesystem::path& path, const FileContext& ctx,
+                      std::uint64_t max_bytes = std::uint64_t{4} << 30);
 
 constexpr bool is_blank(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-/// Iterates over the lines of a text ('\n' ends a line; '\r' counts as a blank).
+/// Iterates over the lines of a text ('\n' ends a line; '\r' counts as a blank). A leading
+/// UTF-8 byte-order mark is skipped; positions stay offsets into the whole text.
 class LineReader {
 public:
-    explicit LineReader(std::string_view text) : text_(text) {}
+    explicit LineReader(std::string_view text)
+        : text_(text), pos_(text.starts_with("\xEF\xBB\xBF") ? 3 : 0) {}
     /// The next line without its terminator; false at the end of the text.
     bool next(std::string_view& line) {
         if (pos_ >= text_.size()) return false;
@@ -77,7 +84,7 @@ public:
 
 private:
     std::string_view text_;
-    std::size_t pos_ = 0;
+    std::size_t pos_;
     std::size_t line_number_ = 0;
 };
 

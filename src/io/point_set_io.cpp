@@ -54,6 +54,7 @@ PointSet read_node(const std::string& data, const FileContext& ctx) {
                 ctx.fail_line(ln, "header: " + std::to_string(n) + " points cannot fit in the file");
             out.dimension = static_cast<int>(dim);
             out.points.reserve(static_cast<std::size_t>(n));
+            out.lines.reserve(static_cast<std::size_t>(n));
             continue;
         }
         const std::size_t i = out.points.size();
@@ -82,6 +83,7 @@ PointSet read_node(const std::string& data, const FileContext& ctx) {
                                   " attribute/marker values after the coordinates, found " +
                                   std::to_string(extra));
         out.points.push_back(p);
+        out.lines.push_back(ln);
     }
     if (n < 0) ctx.fail("empty file (no header)");
     if (static_cast<std::int64_t>(out.points.size()) != n)
@@ -112,6 +114,7 @@ PointSet read_plain(const std::string& data, const FileContext& ctx) {
             ctx.fail_line(ln, "point " + std::to_string(i) + " has " + std::to_string(k) +
                                   " coordinates but the first point has " + std::to_string(dim));
         out.points.push_back(p);
+        out.lines.push_back(ln);
     }
     if (out.points.empty()) ctx.fail("no points found (only blanks and comments)");
     out.dimension = dim;

@@ -134,6 +134,12 @@ TriangleSoup parse_off(std::string_view data, const FileContext& ctx) {
         // Further values (a face colour) are ignored.
         soup.triangles.push_back(tri);
     }
+    // A header that promises fewer elements than the file holds is an error, not a silent
+    // truncation of the mesh.
+    if (next_content_line(lines, line))
+        ctx.fail_line(lines.line_number(),
+                      "more data after the " + std::to_string(nf) + " faces announced on line " +
+                          std::to_string(count_line) + " (is the face count in the header wrong?)");
     return soup;
 }
 

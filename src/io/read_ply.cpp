@@ -197,6 +197,16 @@ public:
         return v;
     }
     void skip(PlyType, const Locus& at) { (void)token(at); }
+    /// Fails when anything but blanks follows the last element the header announced.
+    void expect_end() {
+        while (pos_ < body_.size() && (is_blank(body_[pos_]) || body_[pos_] == '\n')) {
+            if (body_[pos_] == '\n') ++line_;
+            ++pos_;
+        }
+        if (pos_ < body_.size())
+            ctx_.fail_line(line_, "more data after the elements announced in the header "
+                                  "(is an element count in the header wrong?)");
+    }
     void skip_items(std::uint64_t n, PlyType type, const Locus& at) {
         for (std::uint64_t i = 0; i < n; ++i) skip(type, at);
     }
@@ -246,6 +256,14 @@ public:
         return static_cast<std::int64_t>(read(type, at));
     }
     void skip(PlyType type, const Locus& at) { skip_items(1, type, at); }
+    /// Fails when more than trailing white space follows the last element of the header.
+    void expect_end() const {
+        for (std::size_t i = pos_; i < data_.size(); ++i)
+            if (!is_blank(data_[i]) && data_[i] != '\n')
+                ctx_.fail_byte(pos_, std::to_string(data_.size() - pos_) +
+                                         " bytes of data after the elements announced in the "
+                                         "header (is an element count in the header wrong?)");
+    }
     void skip_items(std::uint64_t n, PlyType type, const Locus& at) {
         value_start_ = pos_;
         if (!can_hold(n, type)) fail(at, ": unexpected end of file (truncated?)");
@@ -458,9 +476,11 @@ TriangleSoup parse_ply(std::string_view data, const FileContext& ctx) {
     if (binary) {
         BinarySource src(data, h.body_offset, h.format == PlyFormat::BinaryBigEndian, ctx);
         read_body(src, h, roles, soup);
+        src.expect_end();
     } else {
         AsciiSource src(data.substr(h.body_offset), h.body_line, ctx);
         read_body(src, h, roles, soup);
+        src.expect_end();
     }
     if (soup.triangles.empty()) ctx.fail("the file holds no triangle");
     return soup;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/scaled_frame.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/metrics/self_intersection.hpp"
 
@@ -13,13 +16,16 @@ namespace {
 /// The per-face pass: angles, circumradius, radius-edge ratio and (with normals) the normal
 /// deviation. One cross product per face serves all three angles (|u x v| is twice the area
 /// at every corner) and the circumradius.
-void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_normals,
-                   QualityReport& r, Histogram* normal_hist) {
+void measure_faces(const SurfaceMesh& mesh, const ExactScale& scale,
+                   const std::vector<Vec3>* vertex_normals, QualityReport& r,
+                   Histogram* normal_hist) {
     SummaryAccumulator angle, radius_edge, circumradius, normal_dev, normal_dev_abs;
     for (const Face f : mesh.faces()) {
         const auto vs = mesh.face_vertices(f);
-        const Point3 &a = mesh.position(vs[0]), &b = mesh.position(vs[1]),
-                     &c = mesh.position(vs[2]);
+        const Point3 &a0 = mesh.position(vs[0]), &b0 = mesh.position(vs[1]),
+                     &c0 = mesh.position(vs[2]);
+        // In the scaled frame (exact): no square or product below overflows or underflows.
+        const Point3 a = scale.apply(a0), b = scale.apply(b0), c = scale.apply(c0);
         const Vec3 ab = b - a, ac = c - a, bc = c - b;
         const Vec3 n = cross(ab, ac);
         const double s = norm(n);  // twice the area
@@ -27,13 +33,15 @@ void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_norm
         angle.add(rad_to_deg(std::atan2(s, dot(ab, ac))));
         angle.add(rad_to_deg(std::atan2(s, -dot(ab, bc))));
         angle.add(rad_to_deg(std::atan2(s, dot(ac, bc))));
-        if (s == 0.0) {
+        // Degenerate exactly as check_mesh() says (exact predicate): its circumradius and
+        // radius-edge ratio are infinite.
+        if (s == 0.0 || collinear(a0, b0, c0)) {
             ++r.degenerate_faces;
             continue;
         }
         const double la2 = sqnorm(bc), lb2 = sqnorm(ac), lc2 = sqnorm(ab);
         const double radius = std::sqrt(la2 * lb2 * lc2) / (2.0 * s);  // abc / (4 area)
-        circumradius.add(radius);
+        circumradius.add(scale.length(radius));
         radius_edge.add(radius / std::sqrt(std::min({la2, lb2, lc2})));
         if (vertex_normals != nullptr) {
             const Vec3 unit = n / s;
@@ -48,6 +56,10 @@ void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_norm
     r.angle_deg = angle.summary();
     r.radius_edge = radius_edge.summary();
     r.circumradius = circumradius.summary();
+    if (r.degenerate_faces > 0) {
+        r.radius_edge.max = std::numeric_limits<double>::infinity();
+        r.circumradius.max = std::numeric_limits<double>::infinity();
+    }
     if (vertex_normals != nullptr) {
         r.normal_dev_deg = normal_dev.summary();
         r.normal_dev_abs_deg = normal_dev_abs.summary();
@@ -55,7 +67,7 @@ void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_norm
 }
 
 /// The per-edge pass: boundary edges and 180 - dihedral at interior edges.
-void measure_edges(const SurfaceMesh& mesh, QualityReport& r) {
+void measure_edges(const SurfaceMesh& mesh, const ExactScale& scale, QualityReport& r) {
     SummaryAccumulator dev;
     for (const Edge e : mesh.edges()) {
         if (mesh.is_boundary(e)) {
@@ -63,10 +75,10 @@ void measure_edges(const SurfaceMesh& mesh, QualityReport& r) {
             continue;
         }
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
-        const Point3& p = mesh.position(mesh.from_vertex(h));
-        const Point3& q = mesh.position(mesh.to_vertex(h));
-        const Point3& x = mesh.position(mesh.to_vertex(mesh.next(h)));
-        const Point3& y = mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h))));
+        const Point3 p = scale.apply(mesh.position(mesh.from_vertex(h)));
+        const Point3 q = scale.apply(mesh.position(mesh.to_vertex(h)));
+        const Point3 x = scale.apply(mesh.position(mesh.to_vertex(mesh.next(h))));
+        const Point3 y = scale.apply(mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h)))));
         const double d = 180.0 - rad_to_deg(dihedral_angle(p, q, x, y));
         dev.add(d);
         r.dihedral_dev_hist.add(d);
@@ -91,6 +103,7 @@ QualityReport mesh_quality(const SurfaceMesh& mesh, const QualityOptions& option
     r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
               static_cast<long long>(r.faces);
     r.dihedral_dev_hist = make_histogram(0.0, options.histogram_max_deg, options.histogram_bins);
+    const ExactScale scale = ExactScale::to_unit(mesh.positions());
 
     if (options.surface != nullptr) {
         // One surface normal per vertex instead of three per face.
@@ -98,12 +111,12 @@ QualityReport mesh_quality(const SurfaceMesh& mesh, const QualityOptions& option
         for (const Vertex v : mesh.vertices())
             if (!mesh.is_isolated(v)) normals[v.idx()] = options.surface->normal(mesh.position(v));
         Histogram hist = make_histogram(0.0, options.histogram_max_deg, options.histogram_bins);
-        measure_faces(mesh, &normals, r, &hist);
+        measure_faces(mesh, scale, &normals, r, &hist);
         r.normal_dev_hist = std::move(hist);
     } else {
-        measure_faces(mesh, nullptr, r, nullptr);
+        measure_faces(mesh, scale, nullptr, r, nullptr);
     }
-    measure_edges(mesh, r);
+    measure_edges(mesh, scale, r);
     r.closed = r.faces > 0 && r.boundary_edges == 0;
 
     if (options.hausdorff)

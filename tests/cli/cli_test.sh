@@ -24,6 +24,159 @@ help)
     "$bin" flip >/dev/null 2>&1 && fail "flip without arguments succeeded"
     "$bin" flip "$mesh" -o x.off --criterion bogus >/dev/null 2>&1 && fail "bad criterion accepted"
     ;;
+exit_codes)
+    # The contract of every subcommand: 0 ok, 1 checks failed, 2 usage, 3 bad input, 4 internal.
+    run 0 "$bin" --help
+    grep -q "Exit codes" out.txt || fail "--help does not list the exit codes"
+    for c in flip worsen stats check sample experiment qmesh deform; do
+        run 0 "$bin" $c --help
+        grep -q "Exit codes: 0 success; 1" out.txt || fail "$c --help does not list the exit codes"
+        run 2 "$bin" $c --no-such-flag
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "$c: usage error is not one line: $(cat err.txt)"
+    done
+    run 0 "$bin" flip --help
+    grep -q "angle" out.txt && grep -q "delaunay" out.txt || fail "--help does not list the criteria"
+    run 2 "$bin" flip "$mesh" -o x.off --criterion bogus
+    run 2 "$bin" flip "$mesh" -o x.xyz
+    run 2 "$bin" worsen "$mesh" -o x.off --probability 2
+    run 2 "$bin" qmesh "$data/planar/dots.node" -o x.node --dim 4
+    run 2 "$bin" deform stretch --format xyz
+    run 2 "$bin" sample -o x.off --surface cube
+    run 2 "$bin" stats "$mesh" --hausdorff
+    run 3 "$bin" flip missing.off -o x.off
+    run 3 "$bin" stats missing.off
+    run 3 "$bin" qmesh missing.node -o x.node
+    run 1 "$bin" check "$data/meshes/defective/mesh_with_border.off" --closed
+    ls x.* 2>/dev/null && fail "an output was written by a failed run"
+    true
+    ;;
+no_shell)
+    # File names are never shell syntax: the plots are drawn without a shell.
+    evil="x';touch INJECTED;'"
+    cp "$data/meshes/blobby.off" "$evil.off"
+    run 0 "$bin" deform "$evil.off" --samples 500 --steps 3 --out "$evil" --quiet
+    [ -e INJECTED ] && fail "a file name reached a shell (deform)"
+    if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+        [ -s "$evil/quality.png" ] || fail "deform drew no quality.png"
+        printf '1 0.1 0.2\n2 0.5 0.5\n3 0.7 0.1\n4 0.3 0.8\n' | awk 'BEGIN{print "4 2 0 0"}{print}' > "$evil.node"
+        run 0 "$bin" qmesh "$evil.node" -o "$evil-out.node" --png "$evil \$(touch INJECTED2).png" --quiet
+        [ -s "$evil \$(touch INJECTED2).png" ] || fail "qmesh --png wrote no picture"
+        [ -e INJECTED ] || [ -e INJECTED2 ] && fail "a file name reached a shell (qmesh --png)"
+    fi
+    ls -a | grep -q '^\.dynmesh-' && fail "a staging file was left behind"
+    true
+    ;;
+outputs_all_or_nothing)
+    # Two outputs that are one file, an output that is an input, a report into a missing
+    # directory: refused before any work, nothing written.
+    run 2 "$bin" flip "$mesh" -o X.off --report X.off
+    [ -e X.off ] && fail "-o X.off --report X.off wrote X.off"
+    pts=$data/planar/dots.node
+    run 2 "$bin" qmesh "$pts" -o p.node --report p.ele
+    [ -e p.node ] || [ -e p.ele ] && fail "-o p.node --report p.ele wrote a file"
+    run 2 "$bin" flip "$mesh" -o m.off --report nodir/r.json
+    [ -e m.off ] && fail "the mesh was written although the report cannot be"
+    grep -q "nodir" err.txt || fail "the missing directory is not named: $(cat err.txt)"
+    mkdir p2.ele
+    run 2 "$bin" qmesh "$pts" -o p2.node
+    [ -e p2.node ] && fail "p2.node written although p2.ele cannot be"
+    run 2 "$bin" qmesh "$pts" -o q.node --png q.ele
+    printf '+ 0.5 0.5\n' > ops.txt
+    run 2 "$bin" qmesh "$pts" --ops ops.txt -o ops.txt
+    grep -q '+ 0.5 0.5' ops.txt || fail "the ops file was overwritten"
+    # A failing check still writes every output (the report explains the failure).
+    run 0 "$bin" flip "$mesh" -o ok.off --report ok.json --quiet
+    [ -s ok.off ] && [ -s ok.json ] || fail "a successful run wrote nothing"
+    ls -a | grep -q '^\.dynmesh-' && fail "a staging file was left behind"
+    true
+    ;;
+special_files)
+    # FIFOs and devices are refused at once (no hang); every file argument goes through the
+    # same checked reader.
+    mkfifo ops.fifo v.fifo m.off.fifo
+    pts=$data/planar/dots.node
+    run 3 timeout 20 "$bin" qmesh "$pts" --ops ops.fifo -o a.node
+    grep -q "FIFO" err.txt || fail "qmesh --ops FIFO: $(cat err.txt)"
+    run 3 timeout 20 "$bin" flip "$mesh" -o a.off --vertices v.fifo
+    grep -q "FIFO" err.txt || fail "flip --vertices FIFO: $(cat err.txt)"
+    run 3 timeout 20 "$bin" qmesh "$pts" --ops /dev/zero -o a.node
+    grep -q "device" err.txt || fail "--ops /dev/zero: $(cat err.txt)"
+    run 3 timeout 20 "$bin" stats "$mesh" --against /dev/zero
+    ln -s m.off.fifo pipe.off
+    run 3 timeout 20 "$bin" stats pipe.off
+    run 3 "$bin" qmesh "$pts" --ops . -o a.node
+    grep -q "directory" err.txt || fail "a directory as --ops: $(cat err.txt)"
+    printf '\xef\xbb\xbf+ 0.5 0.5\n' > bom.txt
+    run 0 "$bin" qmesh "$pts" --ops bom.txt -o b.node --quiet
+    printf '\xef\xbb\xbf1 2\n3\n' > v.txt
+    run 0 "$bin" flip "$mesh" -o v.off --vertices v.txt --quiet
+    printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n' > short.off
+    run 3 "$bin" stats short.off
+    grep -q "short.off:8:" err.txt || fail "extra faces not reported with their line: $(cat err.txt)"
+    ls a.* 2>/dev/null && fail "an output was written"
+    true
+    ;;
+extreme_coordinates)
+    # Measures near the double limits are computed in a scaled frame: the same angles as the
+    # unit octahedron, never a wrong number or inf.
+    for s in 1 1e308 1e-310; do
+        python3 - "$s" <<'PY'
+import sys
+s = float(sys.argv[1])
+V = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+F = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+with open("oct_%s.off" % sys.argv[1], "w") as f:
+    f.write("OFF\n6 8 0\n")
+    for v in V: f.write("%r %r %r\n" % tuple(x * s for x in v))
+    for t in F: f.write("3 %d %d %d\n" % t)
+PY
+        run 0 "$bin" stats "oct_$s.off" --report "s_$s.json"
+        run 0 "$bin" check "oct_$s.off"
+        run 0 "$bin" flip "oct_$s.off" -o "f_$s.off" --check --quiet
+    done
+    for s in 1e308 1e-310; do
+        python3 - "$s" <<'PY' || fail "measures of the octahedron scaled by $s differ"
+import json, sys
+a = json.load(open("s_1.json")); b = json.load(open("s_%s.json" % sys.argv[1]))
+for k in ("min_angle_deg", "max_angle_deg", "radius_edge_max", "radius_edge_mean",
+          "dihedral_dev_max_deg", "dihedral_dev_mean_deg"):
+    assert b[k] is not None and abs(a[k] - b[k]) < 1e-9, (k, a[k], b[k])
+assert b["degenerate_faces"] == 0
+PY
+        grep -q "inf" out.txt && fail "stats printed inf for the octahedron scaled by $s"
+    done
+    true
+    ;;
+degenerate_faces)
+    # One behaviour everywhere: stats measures a zero-area face (radius-edge infinite), check
+    # reports it, and every command that changes a mesh refuses it, naming the face.
+    python3 - <<'PY'
+V = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0.5, 0.5, 0)]
+F = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+with open("deg.off", "w") as f:
+    f.write("OFF\n6 8 0\n")
+    for v in V: f.write("%r %r %r\n" % v)
+    for t in F: f.write("3 %d %d %d\n" % t)
+PY
+    run 0 "$bin" stats deg.off --report d.json
+    [ "$(json_get d.json "['degenerate_faces']")" = "1" ] || fail "degenerate face not counted"
+    [ "$(json_get d.json "['radius_edge_max']")" = "None" ] || fail "radius-edge of a zero-area face is not infinite"
+    grep -q "inf" out.txt || fail "stats does not show the infinite radius-edge ratio"
+    run 1 "$bin" check deg.off
+    grep -q "face 4: degenerate" out.txt || fail "check does not name the face: $(cat out.txt)"
+    for c in flip worsen; do
+        run 3 "$bin" $c deg.off -o out.off
+        grep -q "face 4" err.txt || fail "$c does not name the degenerate face: $(cat err.txt)"
+    done
+    run 3 "$bin" deform deg.off --samples 500 --steps 3
+    grep -q "face 4" err.txt || fail "deform does not name the degenerate face: $(cat err.txt)"
+    [ -e out.off ] && fail "an output was written"
+    # Every mesh a command writes with exit 0 passes `dynmesh check`.
+    run 0 "$bin" worsen "$mesh" -o w.off --seed 5 --quiet
+    run 0 "$bin" check w.off --closed
+    run 0 "$bin" flip w.off -o f.off --quiet
+    run 0 "$bin" check f.off --closed
+    ;;
 worsen_flip_stats)
     run 0 "$bin" worsen "$mesh" -o w.off --seed 3 --report w.json --quiet
     [ "$(json_get w.json "['flips']")" -gt 100 ] || fail "worsen made too few flips"
@@ -54,27 +207,29 @@ keeps_vertices)
     ;;
 bad_inputs)
     for f in "$data"/meshes/invalid/*; do
-        run 1 "$bin" flip "$f" -o out.off --quiet
+        run 3 "$bin" flip "$f" -o out.off --quiet
         [ "$(wc -l <err.txt)" -eq 1 ] || fail "error for $f is not one line: $(cat err.txt)"
         grep -q "$(basename "$f")" err.txt || fail "error for $f does not name the file: $(cat err.txt)"
         [ -e out.off ] && fail "an output was written for $f"
     done
-    run 1 "$bin" stats does_not_exist.off
+    run 3 "$bin" stats does_not_exist.off
     grep -q "does_not_exist.off" err.txt || fail "missing file not named"
     printf 'OFF\n3 1 0\n0 0 0\nnan 1 0\n0 1 0\n3 0 1 2\n' > nan.off
-    run 1 "$bin" stats nan.off
+    run 3 "$bin" stats nan.off
     grep -qi "vertex" err.txt || fail "NaN not reported with its vertex: $(cat err.txt)"
-    run 1 "$bin" flip "$data/meshes/defective/cube_quad.off" -o out.off
+    run 3 "$bin" flip "$data/meshes/defective/cube_quad.off" -o out.off
     grep -qi "triangle" err.txt || fail "quad faces not reported: $(cat err.txt)"
     ;;
 non_manifold)
-    run 1 "$bin" flip "$data/meshes/defective/cow_nonmanifold_vertex.obj" -o out.off
+    run 3 "$bin" flip "$data/meshes/defective/cow_nonmanifold_vertex.obj" -o out.off
     grep -qi "manifold" err.txt || fail "non-manifold vertex not reported: $(cat err.txt)"
-    run 1 "$bin" flip "$data/meshes/defective/cube-shuffled.off" -o out.off
+    run 1 "$bin" check "$data/meshes/defective/cow_nonmanifold_vertex.obj"
+    grep -qi "manifold" err.txt || fail "check does not report the pinched vertex: $(cat err.txt)"
+    run 3 "$bin" flip "$data/meshes/defective/cube-shuffled.off" -o out.off
     grep -qiE "orient|direction" err.txt || fail "inconsistent orientation not reported: $(cat err.txt)"
     ;;
 open_mesh)
-    run 1 "$bin" flip "$data/meshes/defective/mesh_with_border.off" -o out.off
+    run 3 "$bin" flip "$data/meshes/defective/mesh_with_border.off" -o out.off
     grep -q "not a closed" err.txt || fail "open mesh not refused: $(cat err.txt)"
     run 0 "$bin" stats "$data/meshes/defective/mesh_with_border.off" --report r.json
     [ "$(json_get r.json "['closed']")" = "False" ] || fail "open mesh reported closed"
@@ -82,10 +237,13 @@ open_mesh)
 same_file)
     cp "$mesh" in.off
     before=$(sha256sum in.off)
-    run 1 "$bin" flip in.off -o in.off
-    run 1 "$bin" worsen in.off -o ./in.off
-    run 1 "$bin" flip in.off -o out.off --report in.off
-    run 1 "$bin" stats in.off --report in.off
+    run 2 "$bin" flip in.off -o in.off
+    run 2 "$bin" worsen in.off -o ./in.off
+    run 2 "$bin" flip in.off -o out.off --report in.off
+    run 2 "$bin" stats in.off --report in.off
+    ln -s in.off link.off
+    run 2 "$bin" flip in.off -o link.off
+    [ -e out.off ] && fail "an output was written although the report clashed with the input"
     [ "$(sha256sum in.off)" = "$before" ] || fail "input was modified"
     "$bin" worsen in.off -o w.off --min-dihedral nan >/dev/null 2>&1 && fail "NaN option accepted"
     "$bin" flip in.off -o w.off --feature-angle inf >/dev/null 2>&1 && fail "infinite option accepted"
@@ -98,7 +256,7 @@ sample_stats)
     run 0 "$bin" sample --surface torus:5,3 --samples 5000 -o tor.ply --quiet
     run 0 "$bin" stats tor.ply --surface torus:5,3 --report t.json
     [ "$(json_get t.json "['euler']")" = "0" ] || fail "torus Euler characteristic"
-    run 1 "$bin" stats tor.ply --surface torus:3,5
+    run 2 "$bin" stats tor.ply --surface torus:3,5
     grep -q "torus" err.txt || fail "bad surface spec not reported"
     ;;
 experiment)
@@ -132,11 +290,11 @@ local)
     nv=$(sed -n 2p w.off | cut -d' ' -f1)
     diff <(sed -n "3,$((nv + 2))p" w.off) <(sed -n "3,$((nv + 2))p" l.off) >/dev/null || fail "vertices changed"
     echo 99999999 > bad.txt
-    run 1 "$bin" flip w.off -o l2.off --vertices bad.txt
+    run 3 "$bin" flip w.off -o l2.off --vertices bad.txt
     grep -q "does not exist" err.txt || fail "bad vertex index not reported: $(cat err.txt)"
     ;;
 report_atomic)
-    run 1 "$bin" stats "$mesh" --report no_such_dir/r.json
+    run 2 "$bin" stats "$mesh" --report no_such_dir/r.json
     [ -e no_such_dir ] && fail "created a directory"
     grep -q "no_such_dir" err.txt || fail "report path not named"
     ;;
@@ -201,60 +359,60 @@ for o in d['ops']:
     ;;
 quadtree_bad)
     pts=$data/planar/dots.node
-    expect_error() {  # expect_error PATTERN ARGS...: exit 1, one line naming PATTERN, no output
-        local pat=$1; shift
-        run 1 "$bin" quadtree "$@" -o out.node --quiet
+    expect_error() {  # expect_error CODE PATTERN ARGS...: exit CODE, one line naming PATTERN, no output
+        local code=$1 pat=$2; shift 2
+        run "$code" "$bin" quadtree "$@" -o out.node --quiet
         [ "$(wc -l <err.txt)" -eq 1 ] || fail "error is not one line: $(cat err.txt)"
         grep -q -- "$pat" err.txt || fail "error does not name '$pat': $(cat err.txt)"
         [ -e out.node ] || [ -e out.ele ] && fail "an output was written for: $*"
         true
     }
     printf '3 2 0 0\n1 0.1 0.2\n2 0.5 0.5\n3 0.1 0.2\n' > dup.node
-    expect_error "dup.node:4" dup.node
+    expect_error 3 "dup.node:4" dup.node
     printf '0.1 0.2\nnan 0.5\n' > nan.xy
-    expect_error "nan.xy:2" nan.xy
+    expect_error 3 "nan.xy:2" nan.xy
     printf '+ 0.1 0.2\n\n- 5 5\n' > missing.txt
-    expect_error "missing.txt:3" "$pts" --ops missing.txt
+    expect_error 3 "missing.txt:3" "$pts" --ops missing.txt
     printf '+ 0.1 0.2\n* 0.3 0.3\n' > malformed.txt
-    expect_error "malformed.txt:2" "$pts" --ops malformed.txt
+    expect_error 3 "malformed.txt:2" "$pts" --ops malformed.txt
     printf '+ 0.1 x\n' > notnum.txt
-    expect_error "notnum.txt:1" "$pts" --ops notnum.txt
+    expect_error 3 "notnum.txt:1" "$pts" --ops notnum.txt
     printf '+ 0.0476694 0.809168\n' > dupop.txt
-    expect_error "dupop.txt:1" "$pts" --ops dupop.txt
-    expect_error "middle third" "$pts" --domain 0,0,1
-    expect_error "--dim is 3" "$pts" --dim 3
-    expect_error "rho" "$pts" --rho 1.2
-    expect_error "expected a .png" "$pts" --png pic.jpg
-    expect_error "2D meshes only" "$pts" --dim 3 --png pic.png
-    expect_error "does not exist" "$pts" --png nodir/pic.png
+    expect_error 3 "dupop.txt:1" "$pts" --ops dupop.txt
+    expect_error 3 "middle third" "$pts" --domain 0,0,1
+    expect_error 3 "--dim is 3" "$pts" --dim 3
+    expect_error 2 "rho" "$pts" --rho 1.2
+    expect_error 2 "expected a .png" "$pts" --png pic.jpg
+    expect_error 2 "2D meshes only" "$pts" --dim 3 --png pic.png
+    expect_error 2 "does not exist" "$pts" --png nodir/pic.png
     # 3D: dimension mismatch both ways, NaN, duplicates, a missing point, outside the domain,
     # malformed ops lines, and cells too small for double precision (spread too large).
     printf '0.1 0.2 0.3\n0.5 0.5 0.5\n0.7 0.1 0.4\n' > p3.xyz
-    expect_error "--dim is 2" p3.xyz
-    expect_error "2D only" p3.xyz --dim 3 --rho 1.5
+    expect_error 3 "--dim is 2" p3.xyz
+    expect_error 2 "2D only" p3.xyz --dim 3 --rho 1.5
     printf '0.1 0.2 0.3\nnan 0.5 0.5\n' > nan3.xyz
-    expect_error "nan3.xyz:2" nan3.xyz --dim 3
+    expect_error 3 "nan3.xyz:2" nan3.xyz --dim 3
     printf '# three points\n0.1 0.2 0.3\n0.5 0.5 0.5\n0.1 0.2 0.3\n' > dup3.xyz
-    expect_error "dup3.xyz:4" dup3.xyz --dim 3
+    expect_error 3 "dup3.xyz:4" dup3.xyz --dim 3
     printf '+ 0.2 0.2 0.2\n- 0.5 0.5 0.25\n' > missing3.txt
-    expect_error "missing3.txt:2" p3.xyz --dim 3 --ops missing3.txt
+    expect_error 3 "missing3.txt:2" p3.xyz --dim 3 --ops missing3.txt
     printf '+ 0.5 0.5 0.5\n' > dupop3.txt
-    expect_error "dupop3.txt:1" p3.xyz --dim 3 --ops dupop3.txt
+    expect_error 3 "dupop3.txt:1" p3.xyz --dim 3 --ops dupop3.txt
     printf '+ 0.2 0.2\n' > short3.txt
-    expect_error "short3.txt:1" p3.xyz --dim 3 --ops short3.txt
+    expect_error 3 "short3.txt:1" p3.xyz --dim 3 --ops short3.txt
     printf '+ 0.2 nan 0.2\n' > nanop3.txt
-    expect_error "nanop3.txt:1" p3.xyz --dim 3 --ops nanop3.txt
-    expect_error "middle third" p3.xyz --dim 3 --domain 0,0,0,1
+    expect_error 3 "nanop3.txt:1" p3.xyz --dim 3 --ops nanop3.txt
+    expect_error 3 "middle third" p3.xyz --dim 3 --domain 0,0,0,1
     printf '+ 5 0 0\n' > far3.txt
-    expect_error "far3.txt:1" p3.xyz --dim 3 --domain -1,-1,-1,3 --ops far3.txt
-    expect_error "X0,Y0,Z0,W" p3.xyz --dim 3 --domain 0,0,1
+    expect_error 3 "far3.txt:1" p3.xyz --dim 3 --domain -1,-1,-1,3 --ops far3.txt
+    expect_error 2 "X0,Y0,Z0,W" p3.xyz --dim 3 --domain 0,0,1
     printf '+ 0.5 0.5 0.50000000000001\n' > close3.txt
-    expect_error "underflow" p3.xyz --dim 3 --ops close3.txt
+    expect_error 3 "underflow" p3.xyz --dim 3 --ops close3.txt
     printf '0 0 0\n1e-310 1e-310 1e-310\n' > tiny3.xyz
-    expect_error "underflow" tiny3.xyz --dim 3
+    expect_error 3 "underflow" tiny3.xyz --dim 3
     printf '0 0\n1 1\n1 1.00000000000001\n' > close2.xy
-    expect_error "underflow" close2.xy
-    run 1 "$bin" qmesh p3.xyz --dim 3 -o out.ply --quiet
+    expect_error 3 "underflow" close2.xy
+    run 2 "$bin" qmesh p3.xyz --dim 3 -o out.ply --quiet
     grep -q "unsupported extension" err.txt || fail "3D .ply output accepted: $(cat err.txt)"
     ;;
 qmesh_3d)
@@ -312,7 +470,7 @@ qmesh_rho)
     pts=$data/planar/dots.node
     run 0 "$bin" qmesh "$pts" --rho 1.5 --check -o oc.node --report oc.json --quiet
     python3 -c "import json; d=json.load(open('oc.json')); assert d['min_angle_deg'] >= 19.47 and d['mesher'] == 'offcenter' and d['dim'] == 2, d" || fail "off-center min angle below 19.47"
-    run 1 "$bin" qmesh "$pts" --rho 1.2 -o bad.node --quiet
+    run 2 "$bin" qmesh "$pts" --rho 1.2 -o bad.node --quiet
     grep -q rho err.txt || fail "--rho 1.2 error does not name rho: $(cat err.txt)"
     [ -e bad.node ] && fail "an output was written for --rho 1.2"
     # Update script over dots.node and the final point set; dynamic == from scratch.
@@ -397,24 +555,24 @@ deform_mesh)
     [ -s "$data/meshes/eight.off" ] || fail "input gone"
     ;;
 deform_bad)
-    expect_error() {  # expect_error NEEDLE ARGS...
-        local needle=$1; shift
-        "$bin" deform "$@" >out.txt 2>err.txt && fail "accepted: $*"
+    expect_error() {  # expect_error CODE NEEDLE ARGS...
+        local code=$1 needle=$2; shift 2
+        run "$code" "$bin" deform "$@"
         grep -q -- "$needle" err.txt || { cat err.txt >&2; fail "error for '$*' does not mention '$needle'"; }
-        [ "$(wc -l < err.txt)" -le 3 ] || { cat err.txt >&2; fail "error for '$*' is not short"; }
+        [ "$(wc -l < err.txt)" -eq 1 ] || { cat err.txt >&2; fail "error for '$*' is not one line"; }
     }
-    expect_error "bogus" bogus_scenario
-    expect_error "format" stretch --format xyz --samples 500 --steps 5
-    expect_error "schedule" stretch --schedule sometimes --samples 500 --steps 5
-    expect_error "speed" stretch --speed nan
-    expect_error "warp" stretch --warp bend --samples 500 --steps 5
-    expect_error "warp" "$data/meshes/eight.off" --warp wobble
+    expect_error 2 "bogus" bogus_scenario
+    expect_error 2 "format" stretch --format xyz --samples 500 --steps 5
+    expect_error 2 "schedule" stretch --schedule sometimes --samples 500 --steps 5
+    expect_error 2 "speed" stretch --speed nan
+    expect_error 2 "warp" stretch --warp bend --samples 500 --steps 5
+    expect_error 2 "warp" "$data/meshes/eight.off" --warp wobble
     for f in "$data"/meshes/invalid/*; do
-        "$bin" deform "$f" --samples 500 --steps 3 >out.txt 2>err.txt && fail "accepted invalid mesh $f"
-        [ "$(wc -l < err.txt)" -le 3 ] || fail "long error for $f"
+        expect_error 3 "$(basename "$f")" "$f" --samples 500 --steps 3
     done
     cp "$data/meshes/eight.off" in.off
-    expect_error "overwrite" in.off --report in.off --samples 500 --steps 3
+    expect_error 2 "input" in.off --report in.off --samples 500 --steps 3
+    expect_error 2 "contains the input" in.off --out . --samples 500 --steps 3
     cmp -s in.off "$data/meshes/eight.off" || fail "input overwritten"
     ;;
 *) fail "unknown case" ;;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/mesh/check.hpp"
 #include "test_sphere.hpp"
 #include "test_support.hpp"
 
@@ -268,6 +270,46 @@ TEST(MeshQuality, CountsDegenerateFaces) {
     EXPECT_EQ(r.angle_deg.count, 9u);
     EXPECT_NEAR(r.angle_deg.min, 0.0, 1e-12);
     EXPECT_NEAR(r.angle_deg.max, 180.0, 1e-12);
+}
+
+TEST(MeshQuality, ADegenerateFaceHasAnInfiniteRadiusEdgeRatio) {
+    // The octahedron with one corner moved onto the midpoint of two others: one zero-area
+    // face, found by the same exact test as check_mesh().
+    SurfaceMesh mesh = test::octahedron();
+    const auto f0 = mesh.face_vertices(*mesh.faces().begin());
+    mesh.position(f0[2]) = 0.5 * (mesh.position(f0[0]) + mesh.position(f0[1]));
+    const QualityReport r = mesh_quality(mesh);
+    EXPECT_EQ(r.degenerate_faces, check_mesh(mesh).degenerate_faces);
+    EXPECT_GE(r.degenerate_faces, 1u);
+    EXPECT_EQ(r.radius_edge.max, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(r.circumradius.max, std::numeric_limits<double>::infinity());
+    EXPECT_TRUE(std::isfinite(r.radius_edge.mean));
+}
+
+/// The octahedron with every coordinate multiplied by `s`.
+SurfaceMesh scaled_octahedron(double s) {
+    SurfaceMesh mesh = test::octahedron();
+    for (const Vertex v : mesh.vertices()) mesh.position(v) = mesh.position(v) * s;
+    return mesh;
+}
+
+TEST(MeshQuality, CoordinatesNearTheDoubleLimitsGiveTheUnitMeasures) {
+    const QualityReport unit = mesh_quality(test::octahedron());
+    // 1e308: squares overflow; 1e-310: subnormal, squares underflow to zero.
+    for (const double s : {1e308, 1e-310, 1e-300, 1e300}) {
+        SCOPED_TRACE(s);
+        const SurfaceMesh mesh = scaled_octahedron(s);
+        const QualityReport r = mesh_quality(mesh);
+        EXPECT_EQ(r.degenerate_faces, 0u);
+        EXPECT_NEAR(r.angle_deg.min, unit.angle_deg.min, 1e-9);
+        EXPECT_NEAR(r.angle_deg.max, unit.angle_deg.max, 1e-9);
+        EXPECT_NEAR(r.radius_edge.min, unit.radius_edge.min, 1e-12);
+        EXPECT_NEAR(r.radius_edge.max, unit.radius_edge.max, 1e-12);
+        EXPECT_NEAR(r.dihedral_dev_deg.max, unit.dihedral_dev_deg.max, 1e-9);
+        EXPECT_NEAR(r.dihedral_dev_deg.min, unit.dihedral_dev_deg.min, 1e-9);
+        EXPECT_TRUE(std::isfinite(r.circumradius.max));
+        EXPECT_NEAR(r.circumradius.max / s, unit.circumradius.max, 1e-12 * unit.circumradius.max);
+    }
 }
 
 TEST(MeshQuality, EmptyMesh) {

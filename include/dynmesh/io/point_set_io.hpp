@@ -19,6 +19,9 @@ namespace dynmesh {
 struct PointSet {
     int dimension = 2;
     std::vector<Point3> points;
+    /// 1-based line of each point in the file it was read from (read_point_set fills it; empty
+    /// for point sets made in code), for messages about a point.
+    std::vector<std::size_t> lines;
 };
 
 /// Reads a point set. `.node`: header `n dim attributes markers`, then one line per point

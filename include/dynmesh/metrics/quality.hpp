@@ -42,8 +42,11 @@ struct QualityReport {
     long long euler = 0;  ///< V - E + F
     bool closed = false;  ///< no boundary edge (and at least one face)
     std::size_t boundary_edges = 0;
-    std::size_t degenerate_faces = 0;  ///< zero area; left out of circumradius, radius_edge
-                                       ///< and normal_dev (but not of angle_deg)
+    /// Zero-area faces (exactly collinear corners, as check_mesh() counts them). Their
+    /// circumradius and radius-edge ratio are infinite: when there is one, radius_edge.max
+    /// and circumradius.max are +infinity, and the other statistics of those two (and
+    /// normal_dev) are over the non-degenerate faces. They count in angle_deg (0, 0, 180).
+    std::size_t degenerate_faces = 0;
 
     // ---- triangle shape ------------------------------------------------------------------
     /// All 3F triangle angles: min is the mesh's min angle, max its max angle (mean is 60
@@ -74,6 +77,9 @@ struct QualityReport {
 
 /// Measures `mesh`. Without Hausdorff and self-intersections this is one linear pass over
 /// faces and one over edges (no allocation beyond one normal per vertex with a surface).
+/// Shape measures are computed on positions scaled by an exact power of two
+/// (scaled_frame.hpp), so meshes with coordinates near the double limits (1e308, or
+/// subnormal 1e-310) get the same angles and ratios as the same mesh near unit size.
 /// \throw InvalidInput when options.hausdorff is set without options.surface, when
 ///        histogram_bins == 0 or histogram_max_deg <= 0.
 [[nodiscard]] QualityReport mesh_quality(const SurfaceMesh& mesh,

@@ -1,0 +1,145 @@
+// All-or-nothing outputs: clashes refused before any work, staged files moved together.
+#include <gtest/gtest.h>
+
+#include "dynmesh/io/output_set.hpp"
+#include "dynmesh/io/text_file.hpp"
+#include "io_test_util.hpp"
+#include "test_support.hpp"
+
+namespace dynmesh::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string invalid_input_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected InvalidInput";
+    return {};
+}
+
+TEST(OutputSet, NothingAppearsUntilCommit) {
+    const auto dir = scratch_dir("output_set_commit");
+    {
+        OutputSet set;
+        const fs::path a = set.add_file(dir / "a.off", "-o");
+        const fs::path r = set.add_file(dir / "r.json", "--report");
+        EXPECT_EQ(a.parent_path(), dir);
+        EXPECT_EQ(a.extension(), ".off");  // writers choose the format by extension
+        write_text_file(a, "mesh");
+        write_text_file(r, "{}");
+        EXPECT_FALSE(fs::exists(dir / "a.off"));
+        EXPECT_FALSE(fs::exists(dir / "r.json"));
+        set.commit();
+    }
+    EXPECT_EQ(read_bytes(dir / "a.off"), "mesh");
+    EXPECT_EQ(read_bytes(dir / "r.json"), "{}");
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"a.off", "r.json"}));
+}
+
+TEST(OutputSet, AFailedRunLeavesNoTraceAndKeepsOldTargets) {
+    const auto dir = scratch_dir("output_set_failed");
+    write_text_file(dir / "old.off", "old");
+    try {
+        OutputSet set;
+        write_text_file(set.add_file(dir / "old.off", "-o"), "new");
+        (void)set.add_file(dir / "r.json", "--report");
+        throw std::runtime_error("the run failed");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(read_bytes(dir / "old.off"), "old");
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"old.off"}));
+}
+
+TEST(OutputSet, RefusesTwoOutputsThatAreOneFile) {
+    const auto dir = scratch_dir("output_set_same");
+    OutputSet set;
+    (void)set.add_file(dir / "x.off", "-o");
+    const std::string msg = invalid_input_of([&] { (void)set.add_file(dir / "sub/../x.off", "--report"); });
+    EXPECT_NE(msg.find("--report"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("same file"), std::string::npos) << msg;
+    // The refused registration staged nothing.
+    EXPECT_EQ(listing(dir).size(), 1u);
+}
+
+TEST(OutputSet, AFileSetClashesWithEachOfItsMembers) {
+    const auto dir = scratch_dir("output_set_node_ele");
+    OutputSet set;
+    const fs::path base = set.add_file_set(dir / "p", {".node", ".ele"}, "-o");
+    EXPECT_NE(invalid_input_of([&] { (void)set.add_file(dir / "p.ele", "--report"); }).find("same file"),
+              std::string::npos);
+    fs::path node = base, ele = base;
+    node += ".node";
+    ele += ".ele";
+    write_text_file(node, "n");
+    write_text_file(ele, "e");
+    set.commit();
+    EXPECT_EQ(read_bytes(dir / "p.node"), "n");
+    EXPECT_EQ(read_bytes(dir / "p.ele"), "e");
+}
+
+TEST(OutputSet, RefusesToOverwriteAnInputEvenThroughALink) {
+    const auto dir = scratch_dir("output_set_input");
+    write_text_file(dir / "in.off", "input");
+    fs::create_symlink(dir / "in.off", dir / "link.off");
+    fs::create_hard_link(dir / "in.off", dir / "hard.off");
+    OutputSet set({dir / "in.off"});
+    for (const char* name : {"in.off", "link.off", "hard.off", "./in.off"}) {
+        const std::string msg = invalid_input_of([&] { (void)set.add_file(dir / name, "-o"); });
+        EXPECT_NE(msg.find("input"), std::string::npos) << name << ": " << msg;
+    }
+    EXPECT_EQ(read_bytes(dir / "in.off"), "input");
+}
+
+TEST(OutputSet, RefusesAMissingDirectoryBeforeAnyWork) {
+    const auto dir = scratch_dir("output_set_nodir");
+    OutputSet set;
+    const std::string msg = invalid_input_of([&] { (void)set.add_file(dir / "nodir/r.json", "--report"); });
+    EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
+    EXPECT_FALSE(fs::exists(dir / "nodir"));
+    EXPECT_NE(invalid_input_of([&] { (void)set.add_file(dir, "-o"); }).find("is a directory"),
+              std::string::npos);
+}
+
+TEST(OutputSet, DirectoriesAreFilledOnCommit) {
+    const auto dir = scratch_dir("output_set_directory");
+    fs::create_directory(dir / "existing");
+    write_text_file(dir / "existing/keep.txt", "keep");
+    write_text_file(dir / "existing/log.csv", "old");
+    {
+        OutputSet set;
+        const fs::path fresh = set.add_directory(dir / "fresh", "--out");
+        const fs::path existing = set.add_directory(dir / "existing", "--out2");
+        write_text_file(fresh / "a.txt", "a");
+        write_text_file(existing / "log.csv", "new");
+        EXPECT_FALSE(fs::exists(dir / "fresh"));
+        EXPECT_EQ(read_bytes(dir / "existing/log.csv"), "old");
+        set.commit();
+    }
+    EXPECT_EQ(read_bytes(dir / "fresh/a.txt"), "a");
+    EXPECT_EQ(read_bytes(dir / "existing/log.csv"), "new");
+    EXPECT_EQ(read_bytes(dir / "existing/keep.txt"), "keep");
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"existing", "fresh"}));
+}
+
+TEST(OutputSet, RefusesInputsAndOutputsInsideAnOutputDirectory) {
+    const auto dir = scratch_dir("output_set_inside");
+    fs::create_directory(dir / "d");
+    write_text_file(dir / "d/in.off", "input");
+    {
+        OutputSet set({dir / "d/in.off"});
+        EXPECT_NE(invalid_input_of([&] { (void)set.add_directory(dir / "d", "--out"); }).find("contains the input"),
+                  std::string::npos);
+    }
+    OutputSet set;
+    fs::create_directory(dir / "e");
+    (void)set.add_directory(dir / "e", "--out");
+    EXPECT_NE(invalid_input_of([&] { (void)set.add_file(dir / "e/r.json", "--report"); }).find("inside"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace dynmesh::test
