@@ -101,6 +101,31 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     return j;
 }
 
+/// The deforming-mesh pipeline works in absolute units (sampling radii, motion bounds, its
+/// tolerances), so a mesh far outside ordinary sizes is refused instead of measured wrongly.
+void require_coordinate_range(const SurfaceMesh& mesh, const std::string& path) {
+    constexpr double kMax = 1e50, kMinExtent = 1e-50;
+    Point3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (const Vertex v : mesh.vertices())
+        for (std::size_t i = 0; i < 3; ++i) {
+            lo[i] = std::min(lo[i], mesh.position(v)[i]);
+            hi[i] = std::max(hi[i], mesh.position(v)[i]);
+        }
+    double big = 0, extent = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        big = std::max({big, std::fabs(lo[i]), std::fabs(hi[i])});
+        extent = std::max(extent, hi[i] - lo[i]);
+    }
+    if (big > kMax || extent < kMinExtent) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf,
+                      ": coordinates up to %.3g and a size of %.3g are outside the range deform "
+                      "handles (|x| <= 1e50, size >= 1e-50); rescale the mesh",
+                      big, extent);
+        throw InvalidInput(path + buf);
+    }
+}
+
 void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     const Schedule schedule = parse_schedule(a.schedule);
     // A scenario name, or a mesh file (anything that exists, or has a mesh extension).
@@ -121,7 +146,9 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     Progress progress("deform", a.common.quiet);
     if (is_file) {
         progress.stage("reading " + a.scenario);
-        require_closed_manifold(load_mesh(a.scenario), a.scenario);
+        const SurfaceMesh mesh = load_mesh(a.scenario);
+        require_closed_manifold(mesh, a.scenario);
+        require_coordinate_range(mesh, a.scenario);
     }
 
     progress.stage("building the scenario");

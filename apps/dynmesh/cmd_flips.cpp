@@ -3,6 +3,7 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -13,6 +14,7 @@
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/unit_frame.hpp"
 
 namespace dynmesh::cli {
 
@@ -57,6 +59,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
     };
     FlipReport r;
     nlohmann::json local;
+    std::optional<ScopedUnitFrame> frame(std::in_place, mesh);  // exact; restored before writing
     if (a.vertices_file.empty()) {
         r = flip_all(mesh, opt);
     } else {
@@ -117,6 +120,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                         {"unchecked_balls", d.unchecked_balls}};
         if (!c.ok()) std::cerr << c.summary("dynmesh flip: check: ");
     }
+    frame.reset();
     require_valid_output(mesh, "flip");
     progress.stage("writing " + a.output);
     t0 = Clock::now();

@@ -7,6 +7,7 @@
 #include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/mesh/unit_frame.hpp"
 
 namespace dynmesh {
 
@@ -23,6 +24,7 @@ WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& opt) {
     DYNMESH_CHECK(!mesh.has_garbage(), "worsen: the mesh has deleted elements; call garbage_collection() first");
     DYNMESH_CHECK(opt.probability >= 0 && opt.probability <= 1, "worsen: probability must lie in [0, 1]");
     WorsenReport rep;
+    const ScopedUnitFrame frame(mesh);  // dihedral tests free of overflow and underflow
     Rng rng(opt.seed);
     const double floor = deg_to_rad(opt.min_dihedral_deg);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;

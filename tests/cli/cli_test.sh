@@ -145,6 +145,30 @@ assert b["degenerate_faces"] == 0
 PY
         grep -q "inf" out.txt && fail "stats printed inf for the octahedron scaled by $s"
     done
+    # Flips decide in the unit frame: the worsened and smoothed blob has the same triangles at
+    # 1e300 and at 1e-300 as at unit size; deform refuses such coordinates, naming the range.
+    python3 - "$mesh" <<'PY'
+import sys
+rows = [r for r in (l.split('#')[0].split() for l in open(sys.argv[1])) if r]
+nv, nf = int(rows[1][0]), int(rows[1][1])
+for name, s in (("b1", 1.0), ("b300", 1e300), ("bm300", 1e-300)):
+    with open(name + ".off", "w") as f:
+        f.write("OFF\n%d %d 0\n" % (nv, nf))
+        for r in rows[2:2 + nv]: f.write("%r %r %r\n" % tuple(float(t) * s for t in r[:3]))
+        for r in rows[2 + nv:2 + nv + nf]: f.write(" ".join(r) + "\n")
+PY
+    for b in b1 b300 bm300; do
+        run 0 "$bin" worsen $b.off -o w_$b.off --seed 4 --quiet
+        run 0 "$bin" flip w_$b.off -o f_$b.off --check --quiet
+        tail -n "$(sed -n 2p b1.off | cut -d' ' -f2)" w_$b.off > w_$b.faces
+        tail -n "$(sed -n 2p b1.off | cut -d' ' -f2)" f_$b.off > f_$b.faces
+    done
+    cmp -s w_b1.faces w_b1.faces && cmp -s w_b1.faces w_b300.faces && cmp -s w_b1.faces w_bm300.faces ||
+        fail "worsen flips differently at extreme scales"
+    cmp -s f_b1.faces f_b300.faces && cmp -s f_b1.faces f_bm300.faces || fail "flip differs at extreme scales"
+    cmp -s w_b1.faces f_b1.faces && fail "flip changed nothing"
+    run 3 "$bin" deform b300.off --samples 500 --steps 3
+    grep -q "1e50" err.txt || fail "deform does not name the range: $(cat err.txt)"
     true
     ;;
 degenerate_faces)

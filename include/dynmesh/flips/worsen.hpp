@@ -26,7 +26,9 @@ struct WorsenReport {
 /// still an edge, with the given probability, flips it unless the flip is topologically
 /// invalid or leaves a dihedral angle below the floor at the new edge or the four quad edges.
 /// Deterministic for a seed. An undone flip restores the edge pq and both triangles, but
-/// the two faces may swap indices and start at another corner. \pre no garbage.
+/// the two faces may swap indices and start at another corner. Runs in the unit frame
+/// (unit_frame.hpp): the same flips for a mesh and for the mesh scaled by any power of two,
+/// at 1e308 or at 1e-310 as at unit size. \pre no garbage.
 WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& options = {});
 
 }  // namespace dynmesh
