@@ -148,8 +148,8 @@ void require_writable_mesh_extension(const std::string& path) {
     throw UsageError("-o " + path + ": unsupported extension '" + ext + "' (write " + list + ")");
 }
 
-void require_valid_output(const SurfaceMesh& mesh, const std::string& command) {
-    const MeshCheckReport c = check_mesh(mesh, {.require_closed = true});
+void require_valid_output(const SurfaceMesh& mesh, const std::string& command, bool closed) {
+    const MeshCheckReport c = check_mesh(mesh, {.require_closed = closed});
     if (!c.ok()) throw InternalError(command + " produced an invalid mesh: " + c.problems.front());
 }
 

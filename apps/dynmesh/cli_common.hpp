@@ -138,9 +138,9 @@ void require_closed_manifold(const SurfaceMesh& mesh, const std::filesystem::pat
 /// The mesh-writing commands check the output's extension before any work.
 /// \throw UsageError naming `path` and the writable extensions.
 void require_writable_mesh_extension(const std::string& path);
-/// An exit-0 output always passes `dynmesh check`: verifies a result before it is written.
-/// \throw InternalError naming the command and the first problem.
-void require_valid_output(const SurfaceMesh& mesh, const std::string& command);
+/// An exit-0 output always passes `dynmesh check` (with --closed when `closed`): verifies a
+/// result before it is written. \throw InternalError naming the command and the first problem.
+void require_valid_output(const SurfaceMesh& mesh, const std::string& command, bool closed = true);
 
 /// The bundled plotting script `name`, run as /usr/bin/python3 script args... without a
 /// shell.

@@ -59,6 +59,7 @@ void run_sample(const SampleArgs& a, RunContext& ctx) {
     }
     rep["vertices"] = mesh.n_vertices();
     rep["faces"] = mesh.n_faces();
+    require_valid_output(mesh, "sample", /*closed=*/false);
     progress.stage("writing " + a.output);
     write_mesh(mesh, mesh_out);
     out.report(rep);
