@@ -211,11 +211,9 @@ int guarded(const std::string& command, const std::function<void(RunContext&)>& 
     } catch (const TopologyError& e) {
         say("error", e.what());
         return kExitBadInput;
-    } catch (const InvalidInput& e) {
-        const bool in_usage = ctx.phase() == RunContext::Phase::Usage;
-        say(in_usage ? "usage error" : "error", e.what());
-        return in_usage ? kExitUsage : kExitBadInput;
-    } catch (const IoError& e) {
+    } catch (const Error& e) {
+        // InvalidInput and IoError: about the command line and the output paths until the
+        // inputs are read, about an input file (or writing an output) afterwards.
         const bool in_usage = ctx.phase() == RunContext::Phase::Usage;
         say(in_usage ? "usage error" : "error", e.what());
         return in_usage ? kExitUsage : kExitBadInput;
