@@ -48,7 +48,8 @@ void add_common_options(CLI::App& app, CommonOptions& common) {
 
 RunOutputs::RunOutputs(const CommonOptions& common, std::vector<fs::path> inputs)
     : set_(std::move(inputs)) {
-    if (!common.report_path.empty()) report_staged_ = set_.add_file(common.report_path, "--report");
+    if (!common.report_path.empty())
+        report_staged_ = set_.add_file(common.report_path, "--report", OutputSet::Order::Last);
 }
 
 fs::path RunOutputs::file(const fs::path& target, std::string_view what) {

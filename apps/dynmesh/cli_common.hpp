@@ -89,6 +89,8 @@ public:
                                    const std::vector<std::string>& extensions, std::string_view what);
     /// Registers an output directory; returns the staging directory.
     std::filesystem::path directory(const std::filesystem::path& target, std::string_view what);
+    /// A private scratch directory beside the output `near` (OutputSet::scratch_directory).
+    std::filesystem::path scratch(const std::filesystem::path& near) { return set_.scratch_directory(near); }
     /// Writes the report (pretty JSON) to its staging path if --report was given.
     void report(const nlohmann::json& report);
     /// Moves everything into place.

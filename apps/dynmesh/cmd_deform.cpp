@@ -114,7 +114,7 @@ void require_coordinate_range(const SurfaceMesh& mesh, const std::string& path) 
     double big = 0, extent = 0;
     for (std::size_t i = 0; i < 3; ++i) {
         big = std::max({big, std::fabs(lo[i]), std::fabs(hi[i])});
-        extent = std::max(extent, hi[i] - lo[i]);
+        extent = std::max(extent, 2 * (0.5 * hi[i] - 0.5 * lo[i]));  // no overflow below DBL_MAX
     }
     if (big > kMax || extent < kMinExtent) {
         char buf[160];
@@ -128,18 +128,24 @@ void require_coordinate_range(const SurfaceMesh& mesh, const std::string& path) 
 
 void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     const Schedule schedule = parse_schedule(a.schedule);
-    // A scenario name, or a mesh file (anything that exists, or has a mesh extension).
-    std::error_code ec;
-    const bool is_file = fs::exists(a.scenario, ec) || fs::path(a.scenario).has_extension();
+    // A built-in scenario name wins over a file of that name (write ./pulse for the file);
+    // anything else is a mesh file.
     static const std::vector<std::string> kScenarios = {"pulse", "stretch", "twist", "bend",
                                                         "boomerang", "rotate", "dimple"};
-    if (!is_file && std::find(kScenarios.begin(), kScenarios.end(), a.scenario) == kScenarios.end())
+    const bool builtin =
+        std::find(kScenarios.begin(), kScenarios.end(), a.scenario) != kScenarios.end();
+    std::error_code ec;
+    const bool is_file = !builtin && (fs::exists(a.scenario, ec) || fs::path(a.scenario).has_extension());
+    if (!is_file && !builtin)
         throw UsageError("'" + a.scenario +
                          "' is neither a scenario (pulse, stretch, twist, bend, boomerang, rotate, "
                          "dimple) nor a mesh file");
     if (!is_file && !a.warp.empty())
         throw UsageError("--warp is for a mesh file; the scenario '" + a.scenario +
                          "' has its own motion");
+    if (!(static_cast<double>(a.steps) / a.speed <= 1e8))
+        throw UsageError("--steps / --speed = " + std::to_string(static_cast<double>(a.steps) / a.speed) +
+                         " time units is too many (at most 1e8)");
     RunOutputs out(a.common, is_file ? std::vector<fs::path>{a.scenario} : std::vector<fs::path>{});
     const fs::path out_dir = a.out.empty() ? fs::path{} : out.directory(a.out, "--out");
     ctx.inputs_begin();
@@ -192,7 +198,8 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
         progress.stage("writing the log");
         if (a.format == "vtp") write_pvd(out_dir / "mesh.pvd", series);
         write_text_file(out_dir / "log.csv", log_csv(r));
-        write_text_file(out_dir / "summary.json", j.dump(2) + "\n");
+        write_text_file(out_dir / "summary.json",
+                        j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         if (!a.no_plot) {
             // The plot is optional here: without Python/matplotlib the run still succeeds.
             progress.stage("plotting");
@@ -241,7 +248,7 @@ void register_deform(CLI::App& root, int& result) {
         "Maintain a mesh of a deforming surface known only by moving samples (Cheng-Dey): a built-in "
         "scenario (pulse, stretch, twist, bend/boomerang, rotate, dimple) or a closed mesh file carried by --warp");
     sub->add_option("scenario", args->scenario,
-                    "pulse | stretch | twist | bend | boomerang | rotate | dimple, or a closed mesh file (.off .obj .ply .stl)")
+                    "pulse | stretch | twist | bend | boomerang | rotate | dimple, or a closed mesh file (.off .obj .ply .stl; a file named like a scenario: ./NAME)")
         ->required();
     sub->add_option("--warp", args->warp, "For a mesh file: bend | twist | pulse | stretch | rotate (default bend)")
         ->check(CLI::IsMember({"bend", "twist", "pulse", "stretch", "rotate"}));

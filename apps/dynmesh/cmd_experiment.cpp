@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 
@@ -38,7 +39,8 @@ void run_sample(const SampleArgs& a, RunContext& ctx) {
     require_writable_mesh_extension(a.output);
     RunOutputs out(a.common, {});
     const std::filesystem::path mesh_out = out.file(a.output, "-o");
-    ctx.inputs_begin();
+    // No input file: a surface that its --samples cannot mesh is a usage error (exit 2).
+    (void)ctx;
     Progress progress("sample", a.common.quiet);
     progress.stage("sampling " + surface->spec());
     const std::vector<Point3> pts = surface->sample_uniform(a.samples, a.seed);
@@ -249,7 +251,15 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& ou
 }
 
 void run_experiment(const ExperimentArgs& a, RunContext& ctx) {
-    for (const std::string& spec : a.surfaces) (void)make_surface(spec);  // usage errors first
+    // Usage errors first: bad surface specs, and cases whose --out files would collide.
+    std::set<std::string> names;
+    for (const std::string& spec : a.surfaces)
+        if (!names.insert(safe_name(make_surface(spec)->spec())).second)
+            throw UsageError("--surface " + spec + " is given twice");
+    for (const std::string& file : a.meshes)
+        if (!names.insert(safe_name(std::filesystem::path(file).filename().string())).second)
+            throw UsageError("--mesh " + file +
+                             ": another case has the same file name (their --out files would collide)");
     RunOutputs out(a.common, {a.meshes.begin(), a.meshes.end()});
     const std::filesystem::path out_dir = a.out_dir.empty() ? std::filesystem::path{} : out.directory(a.out_dir, "--out");
     ctx.inputs_begin();
@@ -297,7 +307,7 @@ void register_experiment(CLI::App& root, int& result) {
         "experiment",
         "Reproduce the edge-flip paper's tables: build, worsen and smooth meshes, compare with the paper");
     sub->add_option("--samples", args->samples, "Samples per analytic surface")
-        ->check(CLI::Range(std::size_t{100}, std::size_t{100000000}))
+        ->check(CLI::Range(std::size_t{1000}, std::size_t{100000000}))
         ->capture_default_str();
     sub->add_option("--seeds", args->seeds, "Seeds 1..N; statistics are averaged across seeds")
         ->check(CLI::Range(std::size_t{1}, std::size_t{1000}))

@@ -59,11 +59,12 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
     };
     FlipReport r;
     nlohmann::json local;
+    std::vector<Vertex> V;  // --vertices
     std::optional<ScopedUnitFrame> frame(std::in_place, mesh);  // exact; restored before writing
     if (a.vertices_file.empty()) {
         r = flip_all(mesh, opt);
     } else {
-        const std::vector<Vertex> V = read_vertices(a.vertices_file, mesh);
+        V = read_vertices(a.vertices_file, mesh);
         const LocalFlipReport lr =
             flip_local(mesh, V, {.rule = rule,
                                  .feature_angle_deg = a.feature_angle_deg,
@@ -106,7 +107,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
             SurfaceMesh again = mesh;
             second = flip_all(again, opt).flips;
         } else {
-            for (Vertex v : read_vertices(a.vertices_file, mesh))
+            for (Vertex v : V)
                 for (Halfedge h : mesh.outgoing_halfedges(v))
                     second += is_flippable(mesh, SurfaceMesh::edge(h), rule, a.feature_angle_deg);
         }
@@ -118,7 +119,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                         {"illegal_edges", d.illegal},
                         {"nonempty_shrunk_balls", d.nonempty_balls},
                         {"unchecked_balls", d.unchecked_balls}};
-        if (!c.ok()) std::cerr << c.summary("dynmesh flip: check: ");
+        if (!c.ok()) std::cout << c.summary("  check: ");
     }
     frame.reset();
     require_valid_output(mesh, "flip");
@@ -215,7 +216,9 @@ void register_worsen(CLI::App& root, int& result) {
         "worsen", "Randomly flip edges (the edge-flip paper's worsening) to make a bad mesh");
     sub->add_option("input", args->input, "Input mesh")->required();
     sub->add_option("-o,--output", args->output, "Output mesh")->required();
-    sub->add_option("--rounds", args->options.rounds, "Passes over the edges")->capture_default_str();
+    sub->add_option("--rounds", args->options.rounds, "Passes over the edges")
+        ->check(CLI::Range(std::size_t{0}, std::size_t{10000}))
+        ->capture_default_str();
     sub->add_option("--seed", args->options.seed, "Random seed")->capture_default_str();
     sub->add_option("--probability", args->options.probability, "Chance to flip each edge")
         ->check(finite_number() & CLI::Range(0.0, 1.0))

@@ -24,6 +24,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "dynmesh/error.hpp"
+#include "dynmesh/io/input_file.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/point_set_io.hpp"
 #include "dynmesh/io/simplex_mesh_io.hpp"
@@ -319,28 +320,25 @@ MeshResult describe_mesh(OctMesh3 mesh, const std::optional<OffCenterMesh2>& /*o
 }
 
 /// Draws the 2D meshes `before` and `after` side by side into `png` (a staging path) with
-/// the bundled plot_mesh2d.py, from .node/.ele files in a private temporary directory that is
-/// removed afterwards. \throw IoError naming --png and the cause if drawing fails.
+/// the bundled plot_mesh2d.py, from .node/.ele files in the run's scratch directory `scratch`.
+/// \throw IoError naming --png and the cause if drawing fails or draws nothing.
 void draw_before_after(const MeshResult& before, const MeshResult& after,
-                       const std::filesystem::path& png, const std::string& png_arg) {
-    namespace fs = std::filesystem;
-    std::string tmpl = (fs::temp_directory_path() / "dynmesh-qmesh-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw IoError("--png: cannot create a temporary directory");
-    struct Cleanup {
-        fs::path dir;
-        ~Cleanup() {
-            std::error_code ec;
-            fs::remove_all(dir, ec);
-        }
-    } cleanup{tmpl};
+                       const std::filesystem::path& png, const std::filesystem::path& scratch,
+                       const std::string& png_arg) {
     for (const auto& [name, m] : {std::pair{"before.node", &before}, {"after.node", &after}})
-        (void)write_simplex_mesh(cleanup.dir / name, SimplexMeshView{.dimension = 2,
-                                                                     .points = m->points,
-                                                                     .simplices = m->simplices});
+        (void)write_simplex_mesh(scratch / name, SimplexMeshView{.dimension = 2,
+                                                                 .points = m->points,
+                                                                 .simplices = m->simplices});
     run_plot_script("plot_mesh2d.py",
-                    {png.string(), (cleanup.dir / "before.node").string(),
-                     (cleanup.dir / "after.node").string()},
+                    {png.string(), (scratch / "before.node").string(), (scratch / "after.node").string()},
                     "--png " + png_arg);
+    std::string head;
+    try {
+        head = read_input_file(png, 1u << 30).substr(0, 8);
+    } catch (const IoError&) {
+    }
+    if (head != "\x89PNG\r\n\x1a\n")
+        throw IoError("--png " + png_arg + ": the plotting script wrote no PNG picture");
 }
 
 /// Where the run writes: the staging paths of -o (a .node/.ele pair shares one base) and --png.
@@ -527,7 +525,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
 
     if (before) {
         progress.stage("drawing " + a.png);
-        draw_before_after(*before, mesh, out.png, a.png);
+        draw_before_after(*before, mesh, out.png, out.set.scratch(a.png), a.png);
     }
 
     progress.stage("writing " + a.output);

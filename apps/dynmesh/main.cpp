@@ -5,6 +5,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "dynmesh/io/output_set.hpp"
 #include "dynmesh/version.hpp"
 
 int main(int argc, char** argv) {
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("dynmesh ") + dynmesh::kVersion);
     app.footer(cli::exit_code_help());
+    dynmesh::install_output_cleanup_on_signals();  // a killed run leaves no temporary
     int result = 0;
     cli::register_flip(app, result);
     cli::register_worsen(app, result);
@@ -22,6 +24,17 @@ int main(int argc, char** argv) {
     cli::register_experiment(app, result);
     cli::register_quadtree(app, result);
     cli::register_deform(app, result);
+    // "dynmesh frob": name the unknown subcommand instead of CLI11's "a subcommand is required".
+    if (argc > 1 && argv[1][0] != '-') {
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands({}))
+            known = known || sub->check_name(argv[1]);
+        if (!known) {
+            std::cerr << "dynmesh: usage error: unknown subcommand '" << argv[1]
+                      << "' (see dynmesh --help)" << std::endl;
+            return cli::kExitUsage;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -35,23 +35,33 @@ std::string size_text(std::uint64_t bytes) {
 
 std::string load_file(const std::filesystem::path& path, const FileContext& ctx,
                       std::uint64_t max_bytes) {
-    // O_NONBLOCK: opening a FIFO without a writer must not block; the descriptor is checked
-    // before any read, so the flag never matters for a regular file.
-    Descriptor file;
-    errno = 0;
-    file.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-    if (file.fd < 0) {
+    // The type is checked before the file is opened (opening a device can have effects of
+    // its own), and again on the open descriptor, which must be the same file: a path
+    // swapped for a FIFO or a device between the two checks is caught.
+    const auto refuse_type = [&](mode_t mode) {
+        if (S_ISDIR(mode)) ctx.fail("is a directory, not a file");
+        if (S_ISFIFO(mode)) ctx.fail("is a pipe (FIFO), not a regular file");
+        if (S_ISCHR(mode) || S_ISBLK(mode)) ctx.fail("is a device, not a regular file");
+        if (!S_ISREG(mode)) ctx.fail("is not a regular file");
+    };
+    struct stat before {};
+    if (::stat(path.c_str(), &before) != 0) {
         const int err = errno;
         if (err == ENOENT) ctx.fail("no such file");
         if (err == ENOTDIR) ctx.fail("no such file (a component of the path is not a directory)");
-        ctx.fail("cannot open the file: " + errno_text(err));
+        ctx.fail("cannot access the file: " + errno_text(err));
     }
+    refuse_type(before.st_mode);
+    // O_NONBLOCK: should the path have become a FIFO, opening it must not block.
+    Descriptor file;
+    errno = 0;
+    file.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (file.fd < 0) ctx.fail("cannot open the file: " + errno_text(errno));
     struct stat st {};
     if (::fstat(file.fd, &st) != 0) ctx.fail("cannot access the file: " + errno_text(errno));
-    if (S_ISDIR(st.st_mode)) ctx.fail("is a directory, not a file");
-    if (S_ISFIFO(st.st_mode)) ctx.fail("is a pipe (FIFO), not a regular file");
-    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) ctx.fail("is a device, not a regular file");
-    if (!S_ISREG(st.st_mode)) ctx.fail("is not a regular file");
+    refuse_type(st.st_mode);
+    if (st.st_dev != before.st_dev || st.st_ino != before.st_ino)
+        ctx.fail("the file changed while it was opened");
     const auto size = static_cast<std::uint64_t>(st.st_size);
     if (size > max_bytes)
         ctx.fail("the file has " + std::to_string(size) + " bytes, more than the limit of " +

@@ -3,6 +3,8 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <map>
+#include <mutex>
 #include <cmath>
 #include <memory>
 #include <system_error>
@@ -54,6 +56,45 @@ std::string join_list(const std::vector<std::string>& items) {
         s += item;
     }
     return s;
+}
+
+namespace {
+
+std::mutex& display_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::map<std::string, std::string>& display_names() {
+    static std::map<std::string, std::string> names;
+    return names;
+}
+
+}  // namespace
+
+void register_display_name(const fs::path& staged, const fs::path& target) {
+    const std::lock_guard<std::mutex> lock(display_mutex());
+    display_names()[staged.string()] = target.string();
+}
+
+void unregister_display_name(const fs::path& staged) {
+    const std::lock_guard<std::mutex> lock(display_mutex());
+    display_names().erase(staged.string());
+}
+
+std::string display_name(const fs::path& path) {
+    {
+        const std::lock_guard<std::mutex> lock(display_mutex());
+        const auto& names = display_names();
+        if (!names.empty()) {
+            // The staged file itself, or a writer's temporary beside it.
+            const auto it = names.find(path.string());
+            if (it != names.end()) return printable(it->second, 400);
+            for (const auto& [staged, target] : names)
+                if (path.string().starts_with(staged + "/"))
+                    return printable(target + path.string().substr(staged.size()), 400);
+        }
+    }
+    return printable(path.string(), 400);
 }
 
 void FileContext::fail(const std::string& msg) const { throw IoError(name_ + ": " + msg); }

@@ -31,11 +31,16 @@ std::string join_list(const std::vector<std::string>& items);
 /// The system's text for an errno value.
 std::string errno_text(int err);
 
+/// Staging paths of OutputSet are shown in messages as the targets they stand for.
+void register_display_name(const std::filesystem::path& staged, const std::filesystem::path& target);
+void unregister_display_name(const std::filesystem::path& staged);
+/// `path`, or the target it stages, as a printable one-line string.
+std::string display_name(const std::filesystem::path& path);
+
 /// Names one file in every error message about it.
 class FileContext {
 public:
-    explicit FileContext(const std::filesystem::path& path)
-        : name_(printable(path.string(), 400)) {}
+    explicit FileContext(const std::filesystem::path& path) : name_(display_name(path)) {}
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Throws IoError("<file>: msg").
     [[noreturn]] void fail(const std::string& msg) const;

@@ -106,6 +106,21 @@ TriangleSoup parse_off(std::string_view data, const FileContext& ctx) {
         const auto face = [i] { return "face " + std::to_string(i); };
         Tokens tokens(line);
         tokens.next(token);
+        // A face starts with an integer count; a line of numbers starting with a fraction is a
+        // vertex: the header announces fewer vertices than the file holds.
+        if (std::int64_t first = 0; i == 0 && !parse_int(token, first)) {
+            Tokens probe(line);
+            std::string_view t;
+            bool numeric = true;
+            while (probe.next(t)) {
+                double v = 0;
+                numeric = numeric && parse_double(t, v);
+            }
+            if (numeric)
+                ctx.fail_line(ln, "expected face 0 ('3 i j k'), found what looks like a vertex: "
+                                  "does the header on line " + std::to_string(count_line) +
+                                  " announce fewer than the file's vertices?");
+        }
         std::int64_t k = 0;
         if (!parse_int(token, k) || k < 0)
             ctx.fail_line(ln, face() + ": invalid vertex count " + quote_text(token));
@@ -113,7 +128,10 @@ TriangleSoup parse_off(std::string_view data, const FileContext& ctx) {
             ctx.fail_line(ln, face() + " has " + std::to_string(k) +
                                   " vertices; only triangles are supported");
         if (k < 3)
-            ctx.fail_line(ln, face() + " has " + std::to_string(k) + " vertices; a face needs 3");
+            ctx.fail_line(ln, face() + " has " + std::to_string(k) + " vertices; a face needs 3" +
+                                  (i == 0 ? " (or does the header on line " + std::to_string(count_line) +
+                                                " announce fewer than the file's vertices?)"
+                                          : std::string()));
         std::array<std::uint32_t, 3> tri{};
         for (std::size_t c = 0; c < 3; ++c) {
             if (!tokens.next(token))

@@ -6,6 +6,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "dynmesh/io/input_file.hpp"
 #include "readers.hpp"
 
 namespace dynmesh::detail {
@@ -56,6 +57,7 @@ bool iequals(std::string_view a, std::string_view b) {
 }
 
 bool starts_with_solid(std::string_view data) {
+    data = skip_utf8_bom(data);
     std::size_t i = 0;
     while (i < data.size() && (is_blank(data[i]) || data[i] == '\n')) ++i;
     return data.size() - i >= 5 && iequals(data.substr(i, 5), "solid");

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include <boost/iterator/counting_iterator.hpp>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/scaled_frame.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 
 namespace dynmesh {
@@ -239,10 +241,24 @@ std::vector<Point3> mesh_sample_points(const SurfaceMesh& mesh, std::size_t face
     return out;
 }
 
-HausdorffResult hausdorff(const SurfaceMesh& a, const SurfaceMesh& b,
-                          const HausdorffOptions& options) {
-    check_inputs("hausdorff", a, " a", options);
-    check_inputs("hausdorff", b, " b", options);
+void require_surface_range(const SurfaceMesh& mesh, const std::string& what) {
+    double big = 0;
+    for (const Vertex v : mesh.vertices()) {
+        const Point3& p = mesh.position(v);
+        big = std::max({big, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    }
+    if (big > 1e50) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.3g", big);
+        throw InvalidInput(what + ": the mesh's coordinates (up to " + buf +
+                           ") are beyond 1e50, the range of analytic surfaces");
+    }
+}
+
+namespace {
+
+HausdorffResult hausdorff_in_frame(const SurfaceMesh& a, const SurfaceMesh& b,
+                                   const HausdorffOptions& options) {
     HausdorffResult r;
     {
         const std::vector<Point3> samples = mesh_sample_points(a, options.face_resolution);
@@ -260,6 +276,32 @@ HausdorffResult hausdorff(const SurfaceMesh& a, const SurfaceMesh& b,
     return r;
 }
 
+/// A copy of `m` with every position scaled by `s`.
+SurfaceMesh scaled_copy(const SurfaceMesh& m, const ExactScale& s) {
+    SurfaceMesh c = m;
+    for (Point3& p : c.positions()) p = s.apply(p);
+    return c;
+}
+
+}  // namespace
+
+HausdorffResult hausdorff(const SurfaceMesh& a, const SurfaceMesh& b,
+                          const HausdorffOptions& options) {
+    check_inputs("hausdorff", a, " a", options);
+    check_inputs("hausdorff", b, " b", options);
+    // Near the double limits (squared distances of coordinates beyond ~1e150 overflow, those
+    // of subnormal ones underflow) both meshes are measured scaled by one exact power of two.
+    std::vector<Point3> both = a.positions();
+    both.insert(both.end(), b.positions().begin(), b.positions().end());
+    const ExactScale s = ExactScale::to_unit(both);
+    if (std::abs(s.exponent()) <= 256) return hausdorff_in_frame(a, b, options);
+    HausdorffResult r = hausdorff_in_frame(scaled_copy(a, s), scaled_copy(b, s), options);
+    r.a_to_b = s.length(r.a_to_b);
+    r.b_to_a = s.length(r.b_to_a);
+    r.distance = s.length(r.distance);
+    return r;
+}
+
 double hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
                           const HausdorffOptions& options) {
     return hausdorff(a, b, options).distance;
@@ -268,6 +310,7 @@ double hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
 HausdorffResult hausdorff_to_surface(const SurfaceMesh& mesh, const ImplicitSurface& surface,
                                      const HausdorffOptions& options) {
     check_inputs("hausdorff_to_surface", mesh, "", options);
+    require_surface_range(mesh, "hausdorff_to_surface");
     HausdorffResult r;
     {
         const std::vector<Point3> samples = mesh_sample_points(mesh, options.face_resolution);

@@ -16,24 +16,24 @@ namespace {
 /// The per-face pass: angles, circumradius, radius-edge ratio and (with normals) the normal
 /// deviation. One cross product per face serves all three angles (|u x v| is twice the area
 /// at every corner) and the circumradius.
-void measure_faces(const SurfaceMesh& mesh, const ExactScale& scale,
-                   const std::vector<Vec3>* vertex_normals, QualityReport& r,
-                   Histogram* normal_hist) {
+void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_normals,
+                   QualityReport& r, Histogram* normal_hist) {
     SummaryAccumulator angle, radius_edge, circumradius, normal_dev, normal_dev_abs;
     for (const Face f : mesh.faces()) {
         const auto vs = mesh.face_vertices(f);
         const Point3 &a0 = mesh.position(vs[0]), &b0 = mesh.position(vs[1]),
                      &c0 = mesh.position(vs[2]);
-        // In the scaled frame (exact): no square or product below overflows or underflows.
-        const Point3 a = scale.apply(a0), b = scale.apply(b0), c = scale.apply(c0);
-        const Vec3 ab = b - a, ac = c - a, bc = c - b;
+        // In the triangle's own frame (exact scaling): no square or product below overflows
+        // or underflows, whatever the size of the coordinates or of the triangle.
+        const LocalFrame<2> frame = local_frame(a0, std::array{b0, c0});
+        const Vec3 ab = frame.v[0], ac = frame.v[1], bc = ac - ab;
         const Vec3 n = cross(ab, ac);
         const double s = norm(n);  // twice the area
         // atan2(|u x v|, u . v), as angle_between(): accurate near 0 and 180 degrees.
         angle.add(rad_to_deg(std::atan2(s, dot(ab, ac))));
         angle.add(rad_to_deg(std::atan2(s, -dot(ab, bc))));
         angle.add(rad_to_deg(std::atan2(s, dot(ac, bc))));
-        // Degenerate exactly as check_mesh() says (exact predicate): its circumradius and
+        // Degenerate as check_mesh() says (exact predicate): its circumradius and
         // radius-edge ratio are infinite.
         if (s == 0.0 || collinear(a0, b0, c0)) {
             ++r.degenerate_faces;
@@ -41,7 +41,7 @@ void measure_faces(const SurfaceMesh& mesh, const ExactScale& scale,
         }
         const double la2 = sqnorm(bc), lb2 = sqnorm(ac), lc2 = sqnorm(ab);
         const double radius = std::sqrt(la2 * lb2 * lc2) / (2.0 * s);  // abc / (4 area)
-        circumradius.add(scale.length(radius));
+        circumradius.add(frame.scale.length(radius));
         radius_edge.add(radius / std::sqrt(std::min({la2, lb2, lc2})));
         if (vertex_normals != nullptr) {
             const Vec3 unit = n / s;
@@ -67,7 +67,7 @@ void measure_faces(const SurfaceMesh& mesh, const ExactScale& scale,
 }
 
 /// The per-edge pass: boundary edges and 180 - dihedral at interior edges.
-void measure_edges(const SurfaceMesh& mesh, const ExactScale& scale, QualityReport& r) {
+void measure_edges(const SurfaceMesh& mesh, QualityReport& r) {
     SummaryAccumulator dev;
     for (const Edge e : mesh.edges()) {
         if (mesh.is_boundary(e)) {
@@ -75,11 +75,13 @@ void measure_edges(const SurfaceMesh& mesh, const ExactScale& scale, QualityRepo
             continue;
         }
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
-        const Point3 p = scale.apply(mesh.position(mesh.from_vertex(h)));
-        const Point3 q = scale.apply(mesh.position(mesh.to_vertex(h)));
-        const Point3 x = scale.apply(mesh.position(mesh.to_vertex(mesh.next(h))));
-        const Point3 y = scale.apply(mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h)))));
-        const double d = 180.0 - rad_to_deg(dihedral_angle(p, q, x, y));
+        const LocalFrame<3> frame =
+            local_frame(mesh.position(mesh.from_vertex(h)),
+                        std::array{mesh.position(mesh.to_vertex(h)),
+                                   mesh.position(mesh.to_vertex(mesh.next(h))),
+                                   mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h))))});
+        const double d =
+            180.0 - rad_to_deg(dihedral_angle(Point3{}, frame.v[0], frame.v[1], frame.v[2]));
         dev.add(d);
         r.dihedral_dev_hist.add(d);
     }
@@ -103,20 +105,20 @@ QualityReport mesh_quality(const SurfaceMesh& mesh, const QualityOptions& option
     r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
               static_cast<long long>(r.faces);
     r.dihedral_dev_hist = make_histogram(0.0, options.histogram_max_deg, options.histogram_bins);
-    const ExactScale scale = ExactScale::to_unit(mesh.positions());
 
     if (options.surface != nullptr) {
+        require_surface_range(mesh, "mesh_quality");
         // One surface normal per vertex instead of three per face.
         std::vector<Vec3> normals(mesh.vertices_size());
         for (const Vertex v : mesh.vertices())
             if (!mesh.is_isolated(v)) normals[v.idx()] = options.surface->normal(mesh.position(v));
         Histogram hist = make_histogram(0.0, options.histogram_max_deg, options.histogram_bins);
-        measure_faces(mesh, scale, &normals, r, &hist);
+        measure_faces(mesh, &normals, r, &hist);
         r.normal_dev_hist = std::move(hist);
     } else {
-        measure_faces(mesh, scale, nullptr, r, nullptr);
+        measure_faces(mesh, nullptr, r, nullptr);
     }
-    measure_edges(mesh, scale, r);
+    measure_edges(mesh, r);
     r.closed = r.faces > 0 && r.boundary_edges == 0;
 
     if (options.hausdorff)

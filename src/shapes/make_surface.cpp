@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <memory>
@@ -75,9 +76,22 @@ std::unique_ptr<ImplicitSurface> make_surface(const std::string& spec) {
                                (count == 1 ? " parameter" : " parameters") + " (\"" + form +
                                "\"), got " + std::to_string(p.size()));
     };
+    if (name == "sphere" && !has_params) p = {1.0};
+    // Sizes double precision resolves: every length in [1e-50, 1e50], and the centre within
+    // 1e9 sizes of the origin (so points on the surface keep 7 significant digits of it).
+    double smallest = INFINITY;
+    for (const double x : p) {
+        if (std::fabs(x) > 0) smallest = std::min(smallest, std::fabs(x));
+        if (std::fabs(x) > 1e50 || (x != 0 && std::fabs(x) < 1e-50))
+            throw InvalidInput(fail + "parameter " + std::to_string(x) +
+                               " is outside the supported range [1e-50, 1e50]");
+    }
+    const double far = std::max({std::fabs(center.x), std::fabs(center.y), std::fabs(center.z)});
+    if (far > 1e50 || (std::isfinite(smallest) && far > 1e9 * smallest))
+        throw InvalidInput(fail + "the centre is too far from the origin for the surface's size "
+                                  "(|centre| must be <= 1e9 times its smallest parameter and <= 1e50)");
     try {
         if (name == "sphere") {
-            if (!has_params) p = {1.0};
             expect(1, "sphere:R");
             return std::make_unique<Sphere>(center, p[0]);
         }

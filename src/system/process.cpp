@@ -1,11 +1,14 @@
 #include "dynmesh/system/process.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
+#include <csignal>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <system_error>
@@ -20,6 +23,7 @@ namespace fs = std::filesystem;
 
 std::string ProcessResult::describe() const {
     if (!started) return "could not start" + (error_tail.empty() ? "" : ": " + error_tail);
+    if (timed_out) return "killed after running longer than its time limit";
     if (signal != 0) return "killed by signal " + std::to_string(signal);
     std::string s = "exit status " + std::to_string(exit_code);
     if (!error_tail.empty()) s += ": " + error_tail;
@@ -56,7 +60,7 @@ struct SpawnActions {
 
 }  // namespace
 
-ProcessResult run_process(const std::vector<std::string>& argv) {
+ProcessResult run_process(const std::vector<std::string>& argv, double timeout_seconds) {
     DYNMESH_CHECK(!argv.empty() && !argv[0].empty(), "run_process: no program given");
     ProcessResult r;
     std::vector<char*> args;
@@ -84,17 +88,37 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
     r.started = true;
     TailLine tail;
     char buf[4096];
-    while (true) {
-        const ssize_t n = ::read(pipe_fd[0], buf, sizeof buf);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        tail.add(buf, static_cast<std::size_t>(n));
-    }
-    ::close(pipe_fd[0]);
+    const auto start = std::chrono::steady_clock::now();
+    bool exited = false, pipe_open = true;
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    while (!exited) {
+        if (pipe_open) {
+            pollfd p{pipe_fd[0], POLLIN, 0};
+            if (::poll(&p, 1, 100) > 0) {
+                const ssize_t n = ::read(pipe_fd[0], buf, sizeof buf);
+                if (n > 0) tail.add(buf, static_cast<std::size_t>(n));
+                else if (n == 0 || errno != EINTR) pipe_open = false;
+            }
+        } else {
+            ::usleep(100000);
+        }
+        const pid_t w = ::waitpid(pid, &status, WNOHANG);
+        if (w == pid) exited = true;
+        if (!exited && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+                           timeout_seconds) {
+            ::kill(pid, SIGKILL);
+            while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            }
+            r.timed_out = true;
+            exited = true;
+        }
     }
-    if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+    // What the program wrote before it exited (without waiting for descendants).
+    ::fcntl(pipe_fd[0], F_SETFL, O_NONBLOCK);
+    for (ssize_t n; pipe_open && (n = ::read(pipe_fd[0], buf, sizeof buf)) > 0;)
+        tail.add(buf, static_cast<std::size_t>(n));
+    ::close(pipe_fd[0]);
+    if (WIFEXITED(status) && !r.timed_out) r.exit_code = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
     r.error_tail = tail.line();
     return r;

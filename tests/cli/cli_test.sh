@@ -42,6 +42,14 @@ exit_codes)
     run 2 "$bin" qmesh "$data/planar/dots.node" -o x.node --dim 4
     run 2 "$bin" deform stretch --format xyz
     run 2 "$bin" sample -o x.off --surface cube
+    run 2 "$bin" sample -o x.off --surface sphere:1e100
+    run 2 "$bin" worsen "$mesh" -o x.off --rounds -1
+    run 2 "$bin" deform pulse --speed 1e-9
+    run 2 "$bin" frob
+    grep -q "unknown subcommand 'frob'" err.txt || fail "unknown subcommand not named: $(cat err.txt)"
+    touch pulse
+    run 0 "$bin" deform pulse --samples 500 --steps 3 --quiet  # the scenario, not the file
+    rm pulse
     run 2 "$bin" stats "$mesh" --hausdorff
     run 3 "$bin" flip missing.off -o x.off
     run 3 "$bin" stats missing.off
@@ -84,6 +92,22 @@ outputs_all_or_nothing)
     printf '+ 0.5 0.5\n' > ops.txt
     run 2 "$bin" qmesh "$pts" --ops ops.txt -o ops.txt
     grep -q '+ 0.5 0.5' ops.txt || fail "the ops file was overwritten"
+    # Devices, pipes and paths that do not resolve to a file are never replaced.
+    run 2 "$bin" check "$mesh" --report /dev/null
+    mkfifo out.fifo
+    run 2 "$bin" flip "$mesh" -o w.off --report out.fifo
+    [ -p out.fifo ] || fail "a FIFO target was replaced"
+    # A move that fails while the outputs are put in place undoes the ones before it.
+    mkdir -p d/summary.json
+    echo old > d/log.csv
+    run 3 "$bin" deform pulse --samples 500 --steps 3 --no-plot --out d --report rep.json --quiet
+    [ -e rep.json ] && fail "the report was left although the outputs were not all written"
+    [ "$(cat d/log.csv)" = old ] || fail "d/log.csv was replaced by a failed run"
+    ls d | grep -q mesh_ && fail "frames were left by a failed run"
+    # experiment cases whose --out files would collide are refused.
+    mkdir -p a b && cp "$mesh" a/m.off && cp "$mesh" b/m.off
+    run 2 "$bin" experiment --seeds 1 --samples 1000 --surface sphere --mesh a/m.off --mesh b/m.off --out exp
+    run 2 "$bin" experiment --seeds 1 --samples 1000 --surface sphere --surface sphere:1 --out exp
     # A failing check still writes every output (the report explains the failure).
     run 0 "$bin" flip "$mesh" -o ok.off --report ok.json --quiet
     [ -s ok.off ] && [ -s ok.json ] || fail "a successful run wrote nothing"
@@ -106,6 +130,8 @@ special_files)
     run 3 timeout 20 "$bin" stats pipe.off
     run 3 "$bin" qmesh "$pts" --ops . -o a.node
     grep -q "directory" err.txt || fail "a directory as --ops: $(cat err.txt)"
+    printf '\xef\xbb\xbfsolid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' > bom.stl
+    run 0 "$bin" stats bom.stl
     printf '\xef\xbb\xbf+ 0.5 0.5\n' > bom.txt
     run 0 "$bin" qmesh "$pts" --ops bom.txt -o b.node --quiet
     printf '\xef\xbb\xbf1 2\n3\n' > v.txt

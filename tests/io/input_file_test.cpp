@@ -84,6 +84,14 @@ TEST(HeaderCounts, MoreFacesThanTheOffHeaderPromisesIsAnError) {
     EXPECT_EQ(read_soup(dir / "ok.off").triangles.size(), 1u);
 }
 
+TEST(HeaderCounts, MoreVerticesThanTheOffHeaderPromisesIsNamedAsSuch) {
+    const auto dir = scratch_dir("header_counts_off_vertices");
+    write_bytes(dir / "v.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 1\n3 0 1 2\n");
+    expect_read_error(dir / "v.off", {"v.off:6:", "looks like a vertex", "line 2"});
+    write_bytes(dir / "w.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+    expect_read_error(dir / "w.off", {"w.off:6:", "fewer than the file's vertices"});
+}
+
 TEST(HeaderCounts, MoreDataThanThePlyHeaderPromisesIsAnError) {
     const auto dir = scratch_dir("header_counts_ply");
     const std::string head =

@@ -1,4 +1,8 @@
 // All-or-nothing outputs: clashes refused before any work, staged files moved together.
+#include <sys/stat.h>
+
+#include <csignal>
+
 #include <gtest/gtest.h>
 
 #include "dynmesh/io/output_set.hpp"
@@ -139,6 +143,89 @@ TEST(OutputSet, RefusesInputsAndOutputsInsideAnOutputDirectory) {
     (void)set.add_directory(dir / "e", "--out");
     EXPECT_NE(invalid_input_of([&] { (void)set.add_file(dir / "e/r.json", "--report"); }).find("inside"),
               std::string::npos);
+}
+
+TEST(OutputSet, AFailedCommitRestoresEveryTarget) {
+    // The directory output holds a file whose name is taken by a directory in the target:
+    // that move fails, and every move before it is undone.
+    const auto dir = scratch_dir("output_set_rollback");
+    fs::create_directories(dir / "out/summary.json");
+    write_text_file(dir / "mesh.off", "old mesh");
+    write_text_file(dir / "out/log.csv", "old log");
+    {
+        OutputSet set;
+        write_text_file(set.add_file(dir / "mesh.off", "-o"), "new mesh");
+        write_text_file(set.add_file(dir / "r.json", "--report", OutputSet::Order::Last), "{}");
+        const fs::path out = set.add_directory(dir / "out", "--out");
+        write_text_file(out / "log.csv", "new log");
+        write_text_file(out / "summary.json", "{}");
+        EXPECT_THROW(set.commit(), IoError);
+    }
+    EXPECT_EQ(read_bytes(dir / "mesh.off"), "old mesh");
+    EXPECT_EQ(read_bytes(dir / "out/log.csv"), "old log");
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+    EXPECT_TRUE(fs::is_directory(dir / "out/summary.json"));
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"mesh.off", "out"}));
+    EXPECT_EQ(listing(dir / "out"), (std::vector<std::string>{"log.csv", "summary.json"}));
+}
+
+TEST(OutputSet, RefusesToReplaceDevicesPipesAndUnresolvablePaths) {
+    const auto dir = scratch_dir("output_set_special");
+    ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0600), 0);
+    OutputSet set;
+    EXPECT_NE(invalid_input_of([&] { (void)set.add_file("/dev/null", "--report"); }).find("not a regular file"),
+              std::string::npos);
+    EXPECT_NE(invalid_input_of([&] { (void)set.add_file(dir / "pipe", "--report"); }).find("not a regular file"),
+              std::string::npos);
+    EXPECT_TRUE(fs::is_fifo(dir / "pipe"));
+    EXPECT_THROW((void)set.add_file("", "-o"), InvalidInput);
+}
+
+TEST(OutputSet, LongNamesKeepTheirExtensionAndFit) {
+    const auto dir = scratch_dir("output_set_long");
+    const std::string name = std::string(240, 'a') + ".off";
+    OutputSet set;
+    const fs::path staged = set.add_file(dir / name, "-o");
+    EXPECT_EQ(staged.extension(), ".off");
+    EXPECT_LE(staged.filename().string().size(), 200u);
+    write_text_file(staged, "x");  // a writer's own temporary beside it fits as well
+    set.commit();
+    EXPECT_EQ(read_bytes(dir / name), "x");
+}
+
+TEST(OutputSet, AReplacedFileKeepsItsPermissions) {
+    const auto dir = scratch_dir("output_set_mode");
+    write_text_file(dir / "m.off", "old");
+    fs::permissions(dir / "m.off", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+    OutputSet set;
+    write_text_file(set.add_file(dir / "m.off", "-o"), "new");
+    set.commit();
+    EXPECT_EQ(fs::status(dir / "m.off").permissions(),
+              fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+}
+
+TEST(OutputSet, MessagesNameTheTargetNotTheStagingFile) {
+    const auto dir = scratch_dir("output_set_names");
+    OutputSet set;
+    const fs::path staged = set.add_file(dir / "picture.xyz", "-o");
+    const std::string msg = io_error_of([&] { write_mesh(octahedron(), staged); });
+    EXPECT_NE(msg.find((dir / "picture.xyz").string()), std::string::npos) << msg;
+    EXPECT_EQ(msg.find(".dynmesh-"), std::string::npos) << msg;
+}
+
+TEST(OutputSetDeathTest, ASignalRemovesTheStagedFiles) {
+    const auto dir = scratch_dir("output_set_signal");
+    EXPECT_EXIT(
+        {
+            install_output_cleanup_on_signals();
+            OutputSet set;
+            write_text_file(set.add_file(dir / "a.off", "-o"), "partial");
+            const fs::path d = set.add_directory(dir / "frames", "--out");
+            write_text_file(d / "mesh_00001.vtp", "partial");
+            std::raise(SIGTERM);
+        },
+        testing::KilledBySignal(SIGTERM), "");
+    EXPECT_TRUE(listing(dir).empty()) << listing(dir).front();
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/metrics/quality.hpp"
+#include "dynmesh/shapes/surface.hpp"
 #include "test_sphere.hpp"
 #include "test_support.hpp"
 
@@ -106,6 +108,39 @@ TEST(Hausdorff, RejectsMeshesWithoutFaces) {
     EXPECT_THROW((void)hausdorff_to_surface(empty, sphere), InvalidInput);
     EXPECT_THROW((void)hausdorff(test::octahedron(), test::octahedron(), {.face_resolution = 0}),
                  InvalidInput);
+}
+
+}  // namespace
+}  // namespace dynmesh
+
+namespace dynmesh {
+namespace {
+
+TEST(Hausdorff, NearTheDoubleLimitsTheDistanceScalesExactly) {
+    // An octahedron against the same octahedron shrunk by half: at unit size, at 1e300 (where
+    // squared distances overflow) and at 1e-300 (where they underflow).
+    const auto pair_at = [](double s) {
+        SurfaceMesh a = test::octahedron(), b = test::octahedron();
+        for (Point3& p : a.positions()) p = p * s;
+        for (Point3& p : b.positions()) p = p * (0.5 * s);
+        return hausdorff(a, b);
+    };
+    const HausdorffResult unit = pair_at(1.0);
+    ASSERT_GT(unit.distance, 0.1);
+    for (const double s : {1e300, 1e-300}) {
+        const HausdorffResult r = pair_at(s);
+        EXPECT_TRUE(std::isfinite(r.distance)) << s;
+        EXPECT_NEAR(r.distance / s, unit.distance, 1e-12 * unit.distance) << s;
+        EXPECT_NEAR(r.a_to_b / s, unit.a_to_b, 1e-12 * unit.distance) << s;
+    }
+}
+
+TEST(Hausdorff, AnAnalyticSurfaceRefusesCoordinatesBeyondItsRange) {
+    SurfaceMesh a = test::octahedron();
+    for (Point3& p : a.positions()) p = p * 1e300;
+    const auto sphere = make_surface("sphere:1");
+    EXPECT_THROW((void)hausdorff_to_surface(a, *sphere), InvalidInput);
+    EXPECT_THROW((void)mesh_quality(a, {.surface = sphere.get()}), InvalidInput);
 }
 
 }  // namespace

@@ -312,6 +312,27 @@ TEST(MeshQuality, CoordinatesNearTheDoubleLimitsGiveTheUnitMeasures) {
     }
 }
 
+TEST(MeshQuality, TrianglesFarSmallerThanTheirNeighboursAreMeasuredExactly) {
+    // Two octahedra in one mesh: one at 1e308 (or unit size) and one 1e-170 or 1e-10 across;
+    // each triangle is measured in its own frame, so neither looks degenerate.
+    const QualityReport unit = mesh_quality(test::octahedron());
+    for (const auto& [big, small] : {std::pair{1.0, 1e-170}, std::pair{1e308, 1e-10}, std::pair{1e300, 1e-300}}) {
+        SCOPED_TRACE(std::to_string(big) + " and " + std::to_string(small));
+        TriangleSoup soup = scaled_octahedron(big).to_soup();
+        const TriangleSoup tiny = scaled_octahedron(small).to_soup();
+        const auto offset = static_cast<std::uint32_t>(soup.points.size());
+        soup.points.insert(soup.points.end(), tiny.points.begin(), tiny.points.end());
+        for (auto t : tiny.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        const QualityReport r = mesh_quality(SurfaceMesh::from_soup(soup));
+        EXPECT_EQ(r.degenerate_faces, 0u);
+        EXPECT_NEAR(r.angle_deg.min, unit.angle_deg.min, 1e-9);
+        EXPECT_NEAR(r.angle_deg.max, unit.angle_deg.max, 1e-9);
+        EXPECT_NEAR(r.radius_edge.max, unit.radius_edge.max, 1e-12);
+        EXPECT_NEAR(r.dihedral_dev_deg.max, unit.dihedral_dev_deg.max, 1e-9);
+        EXPECT_NEAR(r.circumradius.max / big, unit.circumradius.max, 1e-12);
+    }
+}
+
 TEST(MeshQuality, EmptyMesh) {
     const QualityReport r = mesh_quality(SurfaceMesh());
     EXPECT_EQ(r.vertices, 0u);

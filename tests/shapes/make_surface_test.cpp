@@ -43,7 +43,7 @@ TEST(MakeSurface, ParsesEachKind) {
 
 TEST(MakeSurface, SpecRoundTrips) {
     for (const std::string spec :
-         {"sphere:1", "sphere:0.1@0.3,-0.7,1e+20", "ellipsoid:1,2,3", "ellipsoid:0.5,0.5,7@1,1,1",
+         {"sphere:1", "sphere:0.1@0.3,-0.7,1e+07", "ellipsoid:1,2,3", "ellipsoid:0.5,0.5,7@1,1,1",
           "torus:5,3", "torus:1,0.999999@-1,0,0"}) {
         const auto s = make_surface(spec);
         EXPECT_EQ(s->spec(), spec);
@@ -119,6 +119,20 @@ TEST(MakeSurface, MessagesSayWhatIsWrong) {
     EXPECT_NE(message("torus:3,5").find("smaller than the major radius"), std::string::npos);
     EXPECT_NE(message("sphere:-1").find("positive"), std::string::npos);
     EXPECT_NE(message("sphere:1@1,2").find("3 coordinates"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dynmesh
+
+namespace dynmesh {
+namespace {
+
+TEST(MakeSurface, RefusesSizesDoublesCannotResolve) {
+    for (const std::string spec : {"sphere:1e100", "sphere:1e-100", "torus:1e60,1", "ellipsoid:1,1,1e-60",
+                                   "sphere:1@1e300,0,0", "sphere:0.1@0,0,1e20"})
+        EXPECT_THROW((void)make_surface(spec), InvalidInput) << spec;
+    EXPECT_NO_THROW((void)make_surface("sphere:1e40@0,0,1e45"));
+    EXPECT_NO_THROW((void)make_surface("sphere:1e-40"));
 }
 
 }  // namespace

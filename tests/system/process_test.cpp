@@ -48,6 +48,26 @@ TEST(Process, ASignalIsReported) {
     EXPECT_NE(r.describe().find("signal 9"), std::string::npos);
 }
 
+TEST(Process, ATimeoutKillsTheProgram) {
+    const auto dir = scratch_dir("process_timeout");
+    const fs::path marker = dir / "finished";
+    const ProcessResult r = run_process({"/bin/sh", "-c", "sleep 30; touch " + marker.string()}, 0.5);
+    EXPECT_TRUE(r.timed_out);
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(r.describe().find("time limit"), std::string::npos);
+    EXPECT_FALSE(fs::exists(marker));  // killed, not waited for
+}
+
+TEST(Process, ADescendantHoldingStderrDoesNotKeepTheCallerWaiting) {
+    const auto dir = scratch_dir("process_descendant");
+    const fs::path marker = dir / "grandchild_done";
+    const ProcessResult r = run_process(
+        {"/bin/sh", "-c", "echo done >&2; (sleep 30; touch " + marker.string() + ") & exit 0"});
+    EXPECT_TRUE(r.ok()) << r.describe();
+    EXPECT_EQ(r.error_tail, "done");
+    EXPECT_FALSE(fs::exists(marker));  // returned while the grandchild still holds stderr
+}
+
 TEST(Process, BundledScriptsAreFoundThroughTheEnvironmentOrNextToTheExecutable) {
     const auto dir = scratch_dir("process_scripts");
     std::ofstream(dir / "my_plot.py") << "print('hi')\n";

@@ -8,6 +8,7 @@
 /// and ratios are scale-invariant, so they can be measured on scaled positions; a length
 /// measured there is scaled back with `length()`.
 
+#include <array>
 #include <cmath>
 #include <span>
 
@@ -39,7 +40,7 @@ public:
     [[nodiscard]] double apply(double x) const {
         return factor_ != 0.0 ? x * factor_ : std::ldexp(x, exponent_);
     }
-    [[nodiscard]] Point3 apply(const Point3& p) const {
+    [[nodiscard]] Vec3 apply(const Vec3& p) const {
         if (factor_ != 0.0) return p * factor_;
         return {std::ldexp(p.x, exponent_), std::ldexp(p.y, exponent_), std::ldexp(p.z, exponent_)};
     }
@@ -50,5 +51,41 @@ private:
     int exponent_ = 0;
     double factor_ = 1.0;
 };
+
+/// The vectors from `origin` to `points`, scaled by one exact power of two so that their
+/// largest component lies in [1, 2): the frame in which the shape of a triangle (or of a
+/// pair of triangles) is measured. Every square and product of these vectors stays a normal
+/// number, whatever the magnitude of the coordinates (near 1e308, subnormal) or of the
+/// triangle itself (a 1e-170 triangle in a unit mesh). `scale.length()` brings a length
+/// measured there back.
+template <std::size_t N>
+struct LocalFrame {
+    std::array<Vec3, N> v{};
+    ExactScale scale;
+};
+
+template <std::size_t N>
+[[nodiscard]] LocalFrame<N> local_frame(const Point3& origin, const std::array<Point3, N>& points) {
+    // Coordinates near overflow are halved a few times first, so that differences stay finite.
+    double big = std::fmax(std::fabs(origin.x), std::fmax(std::fabs(origin.y), std::fabs(origin.z)));
+    for (const Point3& p : points)
+        big = std::fmax(big, std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))));
+    const ExactScale pre(big > 0x1p1000 ? -8 : 0);
+    LocalFrame<N> f;
+    double m = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+        f.v[i] = pre.apply(points[i]) - pre.apply(origin);
+        m = std::fmax(m, std::fmax(std::fabs(f.v[i].x), std::fmax(std::fabs(f.v[i].y), std::fabs(f.v[i].z))));
+    }
+    if (!(m > 0) || !std::isfinite(m)) {
+        f.scale = pre;
+        return f;
+    }
+    const int e = -std::ilogb(m);
+    const ExactScale s(e);
+    for (Vec3& x : f.v) x = s.apply(x);
+    f.scale = ExactScale(pre.exponent() + e);
+    return f;
+}
 
 }  // namespace dynmesh

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
@@ -34,6 +35,12 @@ struct HausdorffOptions {
 };
 
 /// The two one-sided sampled distances and their maximum.
+/// Measures against an analytic surface (normal deviation, Hausdorff distance) evaluate the
+/// surface at the mesh's points in absolute units, as make_surface() accepts them (sizes up
+/// to 1e50). \throw InvalidInput "<what>: the mesh's coordinates (up to X) are beyond 1e50,
+/// the range of analytic surfaces" otherwise.
+void require_surface_range(const SurfaceMesh& mesh, const std::string& what);
+
 struct HausdorffResult {
     double distance = 0;  ///< max(a_to_b, b_to_a): the two-sided Hausdorff distance
     double a_to_b = 0;    ///< max over the samples of a of the distance to b

@@ -77,9 +77,12 @@ struct QualityReport {
 
 /// Measures `mesh`. Without Hausdorff and self-intersections this is one linear pass over
 /// faces and one over edges (no allocation beyond one normal per vertex with a surface).
-/// Shape measures are computed on positions scaled by an exact power of two
-/// (scaled_frame.hpp), so meshes with coordinates near the double limits (1e308, or
-/// subnormal 1e-310) get the same angles and ratios as the same mesh near unit size.
+/// Shape measures are computed per triangle (and per edge pair) in a frame of its own, its
+/// edge vectors scaled by an exact power of two (scaled_frame.hpp), so meshes with
+/// coordinates near the double limits (1e308, or subnormal 1e-310), or with triangles many
+/// orders of magnitude smaller than their coordinates, get the same angles and ratios as the
+/// same triangles near unit size. \throw InvalidInput also when a surface is given and the
+/// mesh's coordinates exceed 1e50 (require_surface_range).
 /// \throw InvalidInput when options.hausdorff is set without options.surface, when
 ///        histogram_bins == 0 or histogram_max_deg <= 0.
 [[nodiscard]] QualityReport mesh_quality(const SurfaceMesh& mesh,

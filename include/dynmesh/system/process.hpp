@@ -15,6 +15,7 @@ struct ProcessResult {
     bool started = false;    ///< the program could be started
     int exit_code = -1;      ///< its exit status when it exited normally, else -1
     int signal = 0;          ///< the signal that ended it, else 0
+    bool timed_out = false;  ///< killed because it ran longer than the timeout
     std::string error_tail;  ///< the last non-empty line it wrote to stderr (for messages)
     [[nodiscard]] bool ok() const { return started && exit_code == 0; }
     /// "exit status 2: <last stderr line>", "killed by signal 9", "could not start: ...".
@@ -22,10 +23,13 @@ struct ProcessResult {
 };
 
 /// Runs the program `argv[0]` (a path; no PATH search, no shell) with the arguments
-/// `argv[1..]` and waits for it. Its stdin is /dev/null, its stdout is discarded and its
-/// stderr is captured (the last line is kept in error_tail). Never throws for a program that
-/// fails; \throw InvalidInput for an empty argv.
-[[nodiscard]] ProcessResult run_process(const std::vector<std::string>& argv);
+/// `argv[1..]` and waits for it, at most `timeout_seconds` (then it is killed with SIGKILL).
+/// Its stdin is /dev/null, its stdout is discarded and its stderr is captured (the last line
+/// is kept in error_tail); once it has exited, a descendant still holding its stderr open
+/// does not keep the caller waiting. Never throws for a program that fails;
+/// \throw InvalidInput for an empty argv.
+[[nodiscard]] ProcessResult run_process(const std::vector<std::string>& argv,
+                                        double timeout_seconds = 600);
 
 /// The directory holding the running executable (from /proc/self/exe); empty if unknown.
 [[nodiscard]] std::filesystem::path executable_directory();
