@@ -37,7 +37,7 @@ bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c) {
     return !(area >= 1e-14 * l2) || l2 == 0.0;
 }
 
-bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+Def3Conditions def3_conditions(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
     // Unit vectors along the six segments; cos of the angle xyz at y is dot(e_yx, e_yz).
     const Vec3 pq = normalized(q - p), pr = normalized(r - p), ps = normalized(s - p);
     const Vec3 qr = normalized(r - q), qs = normalized(s - q), rs = normalized(s - r);
@@ -52,15 +52,21 @@ bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Poi
     const double t = kAngleSlack;
     // angle A > min(pi/2, X)  <=>  cos A < max(0, cos X)
     // angle A > max(X, Y)     <=>  cos A < min(cos X, cos Y)
-    const bool i = c_prs < std::max(0.0, c_pqs) - t && c_psr < std::max(0.0, c_pqr) - t;
-    const bool ii = c_qrs < std::max(0.0, c_qps) - t && c_qsr < std::max(0.0, c_qpr) - t;
-    const bool iii = c_rps < std::min(c_qpr, c_qps) - t && c_rqs < std::min(c_pqr, c_pqs) - t;
-    const bool iv = c_prq < std::min(c_prs, c_qrs) - t && c_psq < std::min(c_psr, c_qsr) - t;
-    if (!(i && ii && iii && iv)) return false;
+    // (Degenerate triangles make cosines NaN, and every comparison with NaN is false.)
+    Def3Conditions c;
+    c.i = c_prs < std::max(0.0, c_pqs) - t && c_psr < std::max(0.0, c_pqr) - t;
+    c.ii = c_qrs < std::max(0.0, c_qps) - t && c_qsr < std::max(0.0, c_qpr) - t;
+    c.iii = c_rps < std::min(c_qpr, c_qps) - t && c_rqs < std::min(c_pqr, c_pqs) - t;
+    c.iv = c_prq < std::min(c_prs, c_qrs) - t && c_psq < std::min(c_psr, c_qsr) - t;
     // The smallest angle has the largest cosine.
     const double old_max = std::max({c_qpr, c_pqr, c_prq, c_qps, c_pqs, c_psq});
     const double new_max = std::max({c_rps, c_prs, c_psr, c_rqs, c_qrs, c_qsr});
-    return new_max < old_max - t;
+    c.min_angle_grows = new_max < old_max - t;
+    return c;
+}
+
+bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    return def3_conditions(p, q, r, s).all();
 }
 
 namespace {

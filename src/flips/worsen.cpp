@@ -36,7 +36,7 @@ WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& opt) {
         for (const auto& [a, b] : pairs) {
             if (!rng.coin(opt.probability)) continue;
             const Edge e = mesh.find_edge(Vertex(a), Vertex(b));
-            if (!e.is_valid() || !mesh.is_flip_ok(e)) continue;
+            if (!e.is_valid() || !mesh.is_flip_ok(e) || (opt.only && !opt.only(mesh, e))) continue;
             const EdgeQuad k = edge_quad(mesh, e);
             if (is_degenerate_triangle(mesh.position(k.p), mesh.position(k.s), mesh.position(k.r)) ||
                 is_degenerate_triangle(mesh.position(k.q), mesh.position(k.r), mesh.position(k.s)))

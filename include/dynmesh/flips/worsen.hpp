@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "dynmesh/mesh/surface_mesh.hpp"
 
@@ -14,6 +15,9 @@ struct WorsenOptions {
     double probability = 0.5;        ///< chance to try each edge
     double min_dihedral_deg = 120;   ///< a flip is undone if a dihedral angle would drop below
     std::uint64_t seed = 1;
+    /// When set, only edges for which it returns true are tried (e.g. a region around some
+    /// vertices, for local experiments); the coin is still drawn for every edge.
+    std::function<bool(const SurfaceMesh&, Edge)> only = {};
 };
 
 struct WorsenReport {
