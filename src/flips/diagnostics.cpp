@@ -93,10 +93,10 @@ LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& af
     problem(out.moved_vertices, "vertices moved");
 
     // Far triangles: no corner within final_m + 1 hops in the union of both edge graphs.
-    std::unordered_map<std::uint32_t, std::uint32_t> hops;
+    IndexMap<std::uint32_t> hops;
     const SurfaceMesh* both[] = {&before, &after};
     hop_distances(both, V, report.final_m + 1, hops);
-    auto near = [&](Vertex v) { return hops.count(v.idx()) != 0; };
+    auto near = [&](Vertex v) { return hops.contains(v.idx()); };
     for (Face f : after.faces()) {
         const auto c = after.face_vertices(f);
         if (near(c[0]) || near(c[1]) || near(c[2])) continue;
@@ -109,11 +109,10 @@ LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& af
     // F and its edges (hops in `after`).
     hop_distances(after, V, 1, hops);
     std::unordered_set<std::uint32_t> F, edges;
-    for (const auto& [vi, d] : hops) {
-        if (d > 1) continue;
+    hops.for_each([&](std::uint32_t vi, std::uint32_t) {
         for (Halfedge h : after.outgoing_halfedges(Vertex(vi)))
             if (after.face(h).is_valid()) F.insert(after.face(h).idx());
-    }
+    });
     const VertexBallProbe probe(after);
     for (std::uint32_t fi : F) {
         const Face f(fi);

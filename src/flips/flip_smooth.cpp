@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
-#include <unordered_set>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/point_grid.hpp"
@@ -36,11 +35,11 @@ private:
 /// The same in a hash set: for runs whose region is much smaller than the mesh.
 class SparseEdgeFlags {
 public:
-    bool set(Edge e) { return set_.insert(e.idx()).second; }
+    bool set(Edge e) { return set_.insert(e.idx()); }
     void clear(Edge e) { set_.erase(e.idx()); }
 
 private:
-    std::unordered_set<std::uint32_t> set_;
+    IndexSet set_;
 };
 
 /// The FIFO flip loop shared by global and local flipping. `allowed(e)` restricts which
@@ -183,32 +182,32 @@ FlipReport flip_from(SurfaceMesh& mesh, std::span<const Edge> seeds, const FlipO
 }
 
 void hop_distances(std::span<const SurfaceMesh* const> meshes, std::span<const Vertex> V, std::size_t limit,
-                   std::unordered_map<std::uint32_t, std::uint32_t>& dist) {
+                   IndexMap<std::uint32_t>& dist) {
     dist.clear();
     std::vector<Vertex> frontier, next;
     for (Vertex v : V)
-        if (dist.emplace(v.idx(), 0).second) frontier.push_back(v);
+        if (dist.try_emplace(v.idx(), 0).second) frontier.push_back(v);
     for (std::uint32_t d = 1; d <= limit && !frontier.empty(); ++d) {
         next.clear();
         for (Vertex v : frontier)
             for (const SurfaceMesh* m : meshes)
                 for (Halfedge h : m->outgoing_halfedges(v)) {
                     const Vertex w = m->to_vertex(h);
-                    if (dist.emplace(w.idx(), d).second) next.push_back(w);
+                    if (dist.try_emplace(w.idx(), d).second) next.push_back(w);
                 }
         frontier.swap(next);
     }
 }
 
 void hop_distances(const SurfaceMesh& m, std::span<const Vertex> V, std::size_t limit,
-                   std::unordered_map<std::uint32_t, std::uint32_t>& dist) {
+                   IndexMap<std::uint32_t>& dist) {
     const SurfaceMesh* one = &m;
     hop_distances(std::span<const SurfaceMesh* const>(&one, 1), V, limit, dist);
 }
 
 namespace {
 
-using HopMap = std::unordered_map<std::uint32_t, std::uint32_t>;
+using HopMap = IndexMap<std::uint32_t>;
 
 struct StopTest {
     bool pass = true;
@@ -219,37 +218,43 @@ struct StopTest {
 /// within m + 1 hops of V after the round's flips.
 StopTest local_stop_test(const SurfaceMesh& mesh, const HopMap& hops, std::size_t m) {
     auto hop = [&](Vertex v) {
-        const auto it = hops.find(v.idx());
-        return it == hops.end() ? m + 2 : std::size_t(it->second);
+        const std::uint32_t* d = hops.find(v.idx());
+        return d ? std::size_t(*d) : m + 2;
     };
-    // Each face once: from its first corner (in face_vertices order) that lies in `hops`.
+    // F: the faces around the vertices at hop <= 1. The ring: the faces around the vertices
+    // at hop m + 1 (hops change by at most 1 along an edge, so every unmarked face that
+    // touches a vertex within m + 1 hops has a corner at m + 1). Each face is taken once,
+    // from its first corner (in face_vertices order) in that layer.
     std::vector<Face> F, ring;
-    for (const auto& [vi, d] : hops)
-        for (Halfedge h : mesh.outgoing_halfedges(Vertex(vi))) {
+    auto collect = [&](Vertex v, auto&& in_layer, std::vector<Face>& out) {
+        for (Halfedge h : mesh.outgoing_halfedges(v)) {
             const Face f = mesh.face(h);
             if (!f.is_valid()) continue;
             const auto c = mesh.face_vertices(f);
-            const std::size_t h0 = hop(c[0]), h1 = hop(c[1]), h2 = hop(c[2]);
-            const Vertex first = h0 <= m + 1 ? c[0] : h1 <= m + 1 ? c[1] : c[2];
-            if (first.idx() != vi) continue;
-            if (std::min({h0, h1, h2}) <= 1) F.push_back(f);
-            if (std::max({h0, h1, h2}) > m) ring.push_back(f);
+            const Vertex first = in_layer(c[0]) ? c[0] : in_layer(c[1]) ? c[1] : c[2];
+            if (first == v) out.push_back(f);
         }
+    };
+    hops.for_each([&](std::uint32_t vi, std::uint32_t d) {
+        if (d <= 1) collect(Vertex(vi), [&](Vertex x) { return hop(x) <= 1; }, F);
+        if (d == m + 1) collect(Vertex(vi), [&](Vertex x) { return hop(x) == m + 1; }, ring);
+    });
     StopTest st;
     st.ring_faces = ring.size();
     if (ring.empty()) {
         st.ball_tests = F.size();
         return st;
     }
-    // Uniform grid over the ring's centroids, cell = its mean edge length. A triangle lies
-    // within `reach` of its centroid; the few much larger than a cell are tested always.
+    // Uniform grid over the ring's centroids, cell = twice its mean edge length (a query box
+    // of a typical ball spans 2-3 cells per axis). A triangle lies within `reach` of its
+    // centroid; the few much larger than a cell are tested always.
     double len = 0;
     for (Face f : ring) {
         const auto c = mesh.face_vertices(f);
         len += distance(mesh.position(c[0]), mesh.position(c[1])) + distance(mesh.position(c[1]), mesh.position(c[2])) +
                distance(mesh.position(c[2]), mesh.position(c[0]));
     }
-    const double cell = len / double(3 * ring.size());
+    const double cell = 2 * len / double(3 * ring.size());
     PointGrid grid(std::isfinite(cell) && cell > 0 ? cell : 1.0);
     std::vector<Face> big;
     double reach = 0;
@@ -300,7 +305,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V, const L
     DYNMESH_CHECK(options.m0 >= 1, "flip_local: m0 must be at least 1");
     LocalFlipReport out;
     const auto t0 = Clock::now();
-    std::unordered_set<std::uint32_t> changed;
+    IndexSet changed;
     HopMap hops;
     std::vector<std::uint32_t> window;
     std::size_t m = options.m0;
@@ -309,11 +314,11 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V, const L
         ++out.rounds;
         out.final_m = m;
         hop_distances(mesh, V, m, hops);
-        auto inside = [&](Vertex v) { return hops.count(v.idx()) != 0; };
+        auto inside = [&](Vertex v) { return hops.contains(v.idx()); };
         auto allowed = [&](Edge e) { return inside(mesh.vertex(e, 0)) && inside(mesh.vertex(e, 1)); };
         // Seed the window's edges in vertex order (the hash map's order is not portable).
         window.clear();
-        for (const auto& kv : hops) window.push_back(kv.first);
+        hops.for_each([&](std::uint32_t v, std::uint32_t) { window.push_back(v); });
         std::sort(window.begin(), window.end());
         for (std::uint32_t vi : window)
             for (Halfedge h : mesh.outgoing_halfedges(Vertex(vi))) {
@@ -326,8 +331,8 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V, const L
         });
         // Stop test, in the edge graph after the flips.
         hop_distances(mesh, V, m + 1, hops);
-        out.window_vertices = static_cast<std::size_t>(
-            std::count_if(hops.begin(), hops.end(), [&](const auto& kv) { return kv.second <= m; }));
+        out.window_vertices = 0;
+        hops.for_each([&](std::uint32_t, std::uint32_t d) { out.window_vertices += d <= m; });
         if (!out.flips.converged) break;  // the flip cap was reached
         const StopTest st = local_stop_test(mesh, hops, m);
         out.ring_faces = st.ring_faces;
@@ -339,7 +344,7 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V, const L
         }
     }
     out.changed_faces.reserve(changed.size());
-    for (std::uint32_t f : changed) out.changed_faces.push_back(Face(f));
+    changed.for_each([&](std::uint32_t f) { out.changed_faces.push_back(Face(f)); });
     std::sort(out.changed_faces.begin(), out.changed_faces.end());
     out.flips.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     out.flips.converged = out.converged;

@@ -1,8 +1,10 @@
 #include "dynmesh/mesh/mesh_order.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
 
 namespace dynmesh {
@@ -33,6 +35,22 @@ MeshOrder spatial_mesh_order(const SurfaceMesh& mesh) {
     };
     o.edges = by_key(edge_key);
     o.faces = by_key(face_key);
+    return o;
+}
+
+MeshOrder random_mesh_order(const SurfaceMesh& mesh, std::uint64_t seed) {
+    DYNMESH_CHECK(!mesh.has_garbage(), "random_mesh_order: the mesh has deleted elements");
+    Rng rng(seed);
+    auto random_order = [&rng](std::size_t n) {
+        std::vector<std::uint32_t> p(n);
+        std::iota(p.begin(), p.end(), 0u);
+        for (std::size_t i = n; i > 1; --i) std::swap(p[i - 1], p[rng.below(i)]);
+        return p;
+    };
+    MeshOrder o;
+    o.vertices = random_order(mesh.vertices_size());
+    o.edges = random_order(mesh.edges_size());
+    o.faces = random_order(mesh.faces_size());
     return o;
 }
 

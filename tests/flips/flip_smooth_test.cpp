@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
-#include <unordered_map>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/diagnostics.hpp"
@@ -246,9 +245,9 @@ TEST(FlipLocal, StopTestMatchesAnAllPairsSearch) {
     SurfaceMesh m = restricted_delaunay(sphere.sample_uniform(3000, 4), sphere);
     ASSERT_TRUE(flip_all(m).converged);
     auto all_pairs_pass = [&](std::span<const Vertex> V, std::size_t mm) {
-        std::unordered_map<std::uint32_t, std::uint32_t> hops;
+        IndexMap<std::uint32_t> hops;
         hop_distances(m, V, mm + 1, hops);
-        auto hop = [&](Vertex v) { return hops.count(v.idx()) ? std::size_t(hops[v.idx()]) : mm + 2; };
+        auto hop = [&](Vertex v) { return hops.contains(v.idx()) ? std::size_t(*hops.find(v.idx())) : mm + 2; };
         std::vector<Face> F, ring;
         for (Face f : m.faces()) {
             const auto c = m.face_vertices(f);
@@ -312,13 +311,13 @@ TEST(FlipLocal, LeavesAWorsenedRestAlone) {
         SurfaceMesh one = worsened;
         const std::vector<Vertex> V = {Vertex(v)};
         const LocalFlipReport r1 = flip_local(one, V, {.m0 = 1, .max_rounds = 1});
-        std::unordered_map<std::uint32_t, std::uint32_t> hops;
+        IndexMap<std::uint32_t> hops;
         hop_distances(worsened, V, 2, hops);
         for (Face f : one.faces()) {
             const auto c = one.face_vertices(f);
             if (c == worsened.face_vertices(f)) continue;
             ++changed;
-            for (Vertex x : c) EXPECT_TRUE(hops.count(x.idx())) << "vertex " << v << ": a flip outside the window";
+            for (Vertex x : c) EXPECT_TRUE(hops.contains(x.idx())) << "vertex " << v << ": a flip outside the window";
         }
         EXPECT_EQ(check_local_flip(worsened, one, V, r1).far_faces_changed, 0u);
     }

@@ -2,9 +2,8 @@
 
 #include <cstring>
 #include <map>
-#include <numeric>
 
-#include "dynmesh/geometry/random.hpp"
+#include "dynmesh/mesh/mesh_order.hpp"
 
 namespace dynmesh::test {
 
@@ -109,16 +108,7 @@ std::string mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b) {
 }
 
 SurfaceMesh shuffled(SurfaceMesh mesh, std::uint64_t seed) {
-    Rng rng(seed);
-    auto random_order = [&rng](std::size_t n) {
-        std::vector<std::uint32_t> p(n);
-        std::iota(p.begin(), p.end(), 0u);
-        for (std::size_t i = n; i > 1; --i) std::swap(p[i - 1], p[rng.below(i)]);
-        return p;
-    };
-    const auto v = random_order(mesh.vertices_size()), e = random_order(mesh.edges_size()),
-               f = random_order(mesh.faces_size());
-    mesh.permute(v, e, f);
+    permute(mesh, random_mesh_order(mesh, seed));
     return mesh;
 }
 

@@ -25,7 +25,7 @@ SurfaceMesh grid(int n);
 /// halfedge, vertex and face, positions bit for bit, deletion flags); else the first
 /// difference, in words.
 std::string mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b);
-/// The mesh with its vertices, edges and faces renumbered at random (SurfaceMesh::permute).
+/// The mesh with its vertices, edges and faces renumbered at random (random_mesh_order).
 SurfaceMesh shuffled(SurfaceMesh mesh, std::uint64_t seed);
 
 }  // namespace dynmesh::test

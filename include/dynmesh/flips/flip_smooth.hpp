@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <functional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/mesh/index_map.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh {
@@ -107,7 +107,7 @@ struct LocalFlipReport {
 /// m hops of V, m = m0, 2 m0, ..., until the stop test (LocalFlipReport::converged) passes.
 /// Hops are counted in the current edge graph, recomputed after each round's flips.
 /// Cost is proportional to the window, not to the mesh: no per-call array over the mesh
-/// (hash maps for hops and queue flags).
+/// (IndexMap / IndexSet for hops, queue flags and changed faces).
 /// \pre mesh has no garbage; V holds live vertices. \throw InvalidInput otherwise.
 LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
                            const LocalFlipOptions& options = {});
@@ -115,10 +115,10 @@ LocalFlipReport flip_local(SurfaceMesh& mesh, std::span<const Vertex> V,
 /// Hop distance from V of every vertex within `limit` edge hops (breadth-first in the current
 /// edge graph), into `out` (cleared first); V itself is at 0.
 void hop_distances(const SurfaceMesh& mesh, std::span<const Vertex> V, std::size_t limit,
-                   std::unordered_map<std::uint32_t, std::uint32_t>& out);
+                   IndexMap<std::uint32_t>& out);
 /// The same in the union of the edge graphs of several meshes on one vertex set (an edge of
 /// any of them is a hop). \pre every mesh has the vertices of V.
 void hop_distances(std::span<const SurfaceMesh* const> meshes, std::span<const Vertex> V, std::size_t limit,
-                   std::unordered_map<std::uint32_t, std::uint32_t>& out);
+                   IndexMap<std::uint32_t>& out);
 
 }  // namespace dynmesh
