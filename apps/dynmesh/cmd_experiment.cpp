@@ -1,5 +1,6 @@
 /// `dynmesh sample` (a mesh of samples of an analytic surface) and `dynmesh experiment`
 /// (the edge-flip paper's tables, reproduced side by side with the paper's numbers).
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -263,17 +265,12 @@ std::optional<std::size_t> boomerang_spec(const std::string& spec) {
     const std::string name = "boomerang";
     if (spec.compare(0, name.size(), name) != 0) return std::nullopt;
     if (spec.size() == name.size()) return kBoomerangSamples;
-    const std::string n = spec.substr(name.size() + 1);
-    std::size_t pos = 0;
-    unsigned long long v = 0;
-    try {
-        v = std::stoull(n, &pos);
-    } catch (const std::exception&) {
-        pos = 0;
-    }
-    if (spec[name.size()] != ':' || pos != n.size() || n.empty() || n[0] == '-' || v < 100)
+    const std::string_view n = std::string_view(spec).substr(name.size() + 1);
+    std::size_t v = 0;
+    const auto [end, err] = std::from_chars(n.data(), n.data() + n.size(), v);
+    if (spec[name.size()] != ':' || n.empty() || err != std::errc() || end != n.data() + n.size() || v < 100)
         throw InvalidInput("--surface " + spec + ": expected boomerang or boomerang:SAMPLES with SAMPLES >= 100");
-    return static_cast<std::size_t>(v);
+    return v;
 }
 
 void run_experiment(const ExperimentArgs& a) {

@@ -46,6 +46,33 @@ TEST(IndexMap, AgreesWithStdMapUnderRandomOperations) {
     }
 }
 
+// A small table (16 slots, at most 7 keys) filled with random keys and emptied in random
+// order, many times: probe runs often wrap around the end of the table, and erasing inside
+// them must keep every remaining key reachable.
+TEST(IndexMap, EraseInsideWrappedProbeRuns) {
+    Rng rng(3);
+    IndexMap<std::uint32_t> map;
+    for (int round = 0; round < 20000; ++round) {
+        map.clear();
+        std::vector<std::uint32_t> keys;
+        while (keys.size() < 7) {
+            const auto k = static_cast<std::uint32_t>(rng.below(4000000000ull));
+            if (map.try_emplace(k, k ^ 0x5555u).second) keys.push_back(k);
+        }
+        for (std::size_t i = keys.size(); i > 1; --i) std::swap(keys[i - 1], keys[rng.below(i)]);
+        for (std::size_t e = 0; e < keys.size(); ++e) {
+            ASSERT_TRUE(map.erase(keys[e]));
+            ASSERT_FALSE(map.contains(keys[e]));
+            for (std::size_t k = e + 1; k < keys.size(); ++k) {
+                const std::uint32_t* v = map.find(keys[k]);
+                ASSERT_NE(v, nullptr) << "round " << round << ": key lost after an erasure";
+                ASSERT_EQ(*v, keys[k] ^ 0x5555u);
+            }
+        }
+        ASSERT_EQ(map.size(), 0u);
+    }
+}
+
 TEST(IndexSet, InsertEraseContains) {
     IndexSet s;
     EXPECT_TRUE(s.insert(7));
