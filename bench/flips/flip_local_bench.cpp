@@ -101,6 +101,7 @@ void run(benchmark::State& state, std::size_t n, std::size_t k, bool local) {
         state.counters["rounds"] = double(last.rounds);
         state.counters["final_m"] = double(last.final_m);
         state.counters["flips"] = double(last.flips.flips);
+        state.counters["checks"] = double(last.flips.checks);
         state.counters["converged"] = last.converged ? 1 : 0;
         state.counters["ns_per_window_vertex"] = benchmark::Counter(
             double(last.window_vertices) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -128,15 +129,15 @@ void print_table(const dynmesh::bench::RecordingReporter& rep, const char* local
     const auto& all = rep.runs(all_name);
     if (local.empty()) return;
     std::printf("\n%s\n", title);
-    std::printf("%10s %8s %8s %7s %8s %8s %14s %16s %14s %14s\n", "vertices", "|V|", "window", "rounds", "final_m",
-                "flips", "flip_local [s]", "ns/window vertex", "flip_all [s]", "all / local");
+    std::printf("%10s %8s %8s %7s %8s %8s %15s %14s %16s %14s %12s\n", "vertices", "|V|", "window", "rounds", "final_m",
+                "flips", "checks/window v", "flip_local [s]", "ns/window vertex", "flip_all [s]", "all / local");
     for (const auto& [arg, r] : local) {
         const double w = r.counter("window");
         const auto a = all.find(arg);
         const double ta = a != all.end() ? a->second.seconds : 0.0;
-        std::printf("%10.0f %8.0f %8.0f %7.0f %8.0f %8.0f %14.6f %16.1f %14.4f %14.1f%s\n", r.counter("vertices"),
-                    r.counter("V"), w, r.counter("rounds"), r.counter("final_m"), r.counter("flips"), r.seconds,
-                    r.seconds / w * 1e9, ta, ta / r.seconds, r.counter("converged") > 0 ? "" : "  (not converged)");
+        std::printf("%10.0f %8.0f %8.0f %7.0f %8.0f %8.0f %15.2f %14.6f %16.1f %14.4f %12.1f%s\n", r.counter("vertices"),
+                    r.counter("V"), w, r.counter("rounds"), r.counter("final_m"), r.counter("flips"), r.counter("checks") / w,
+                    r.seconds, r.seconds / w * 1e9, ta, ta / r.seconds, r.counter("converged") > 0 ? "" : "  (not converged)");
     }
 }
 
