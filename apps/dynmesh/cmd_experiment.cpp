@@ -1,17 +1,22 @@
 /// `dynmesh sample` (a mesh of samples of an analytic surface) and `dynmesh experiment`
 /// (the edge-flip paper's tables, reproduced side by side with the paper's numbers).
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "dynmesh/deform/snapshot.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/experiment.hpp"
 #include "dynmesh/io/mesh_io.hpp"
@@ -83,7 +88,10 @@ struct ExperimentArgs {
     std::string criterion = "angle";
 };
 
-/// The paper's Tables 1-3: (mean, sd, max) of normal deviation and of 180 - dihedral.
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The paper's Tables 1-3: (mean, sd, max) of normal deviation and of 180 - dihedral (NaN:
+/// not given).
 struct PaperRow {
     double n_mean, n_sd, n_max, d_mean, d_sd, d_max;
 };
@@ -93,6 +101,9 @@ const std::map<std::string, std::array<PaperRow, 3>>& paper_tables() {
                       PaperRow{1.5, 0.56, 3.8, 1.4, 0.87, 5.3}}},
         {"torus:5,3", {PaperRow{2.6, 1.50, 16.8, 2.6, 1.93, 16.3}, PaperRow{6.8, 8.11, 63.7, 10, 11.09, 60},
                        PaperRow{2.6, 1.49, 15.8, 2.6, 1.92, 16}}},
+        // Table 3 gives dihedral statistics only.
+        {"boomerang", {PaperRow{kNaN, kNaN, kNaN, 4.3, 5.23, 50.8}, PaperRow{kNaN, kNaN, kNaN, 11.2, 12.11, 60},
+                       PaperRow{kNaN, kNaN, kNaN, 4.3, 5.23, 50.9}}},
     };
     return t;
 }
@@ -162,9 +173,11 @@ std::string safe_name(std::string s) {
     return s;
 }
 
+/// One case: an analytic surface (sampled anew for every seed) or a given mesh; `paper_key`
+/// names its row of paper_tables() (empty: none).
 nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& out_dir,
                         const std::string& name, const ImplicitSurface* surface,
-                        const SurfaceMesh* given, Progress& progress) {
+                        const SurfaceMesh* given, const std::string& paper_key, Progress& progress) {
     const FlipRule rule = parse_flip_rule(a.criterion);
     RowStats rows[3];
     Across flips_per_vertex, shared, seconds;
@@ -198,7 +211,7 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& ou
     // Print the table.
     const bool normals = rows[0].n_mean.acc.count() > 0;
     const auto& tables = paper_tables();
-    const auto paper = surface ? tables.find(surface->spec()) : tables.end();
+    const auto paper = tables.find(paper_key);
     std::cout << "\n" << name << ": " << vertices << " vertices, " << n_seeds << " seed(s)"
               << (n_seeds > 1 ? " (mean±sd across seeds)" : "") << ", criterion " << a.criterion << "\n";
     std::cout << "  mesh       source   | normal deviation (deg)         | 180 - dihedral (deg)\n"
@@ -211,6 +224,7 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& ou
         return t + std::string(shown < width ? width - shown : 1, ' ');
     };
     auto num = [](double x, int prec) {
+        if (std::isnan(x)) return std::string("-");
         char buf[32];
         std::snprintf(buf, sizeof buf, "%.*f", prec, x);
         return std::string(buf);
@@ -241,20 +255,37 @@ nlohmann::json run_case(const ExperimentArgs& a, const std::filesystem::path& ou
                         {"shared_edges_percent", shared.mean()}};
     if (paper != tables.end()) {
         nlohmann::json pj = nlohmann::json::array();
-        for (const PaperRow& p : paper->second)
-            pj.push_back({{"normal_dev_mean_deg", p.n_mean}, {"normal_dev_sd_deg", p.n_sd},
-                          {"normal_dev_max_deg", p.n_max}, {"dihedral_dev_mean_deg", p.d_mean},
-                          {"dihedral_dev_sd_deg", p.d_sd}, {"dihedral_dev_max_deg", p.d_max}});
+        for (const PaperRow& p : paper->second) {
+            nlohmann::json row = {{"dihedral_dev_mean_deg", p.d_mean}, {"dihedral_dev_sd_deg", p.d_sd},
+                                  {"dihedral_dev_max_deg", p.d_max}};
+            if (!std::isnan(p.n_mean))
+                row.update({{"normal_dev_mean_deg", p.n_mean}, {"normal_dev_sd_deg", p.n_sd},
+                            {"normal_dev_max_deg", p.n_max}});
+            pj.push_back(row);
+        }
         j["paper"] = pj;
     }
     return j;
+}
+
+/// "boomerang" or "boomerang:SAMPLES" -> the sample count; anything else -> nullopt.
+std::optional<std::size_t> boomerang_spec(const std::string& spec) {
+    const std::string name = "boomerang";
+    if (spec.compare(0, name.size(), name) != 0) return std::nullopt;
+    if (spec.size() == name.size()) return kBoomerangSamples;
+    const std::string_view n = std::string_view(spec).substr(name.size() + 1);
+    std::size_t v = 0;
+    const auto [end, err] = std::from_chars(n.data(), n.data() + n.size(), v);
+    if (spec[name.size()] != ':' || n.empty() || err != std::errc() || end != n.data() + n.size() || v < 100)
+        throw InvalidInput("--surface " + spec + ": expected boomerang or boomerang:SAMPLES with SAMPLES >= 100");
+    return v;
 }
 
 void run_experiment(const ExperimentArgs& a, RunContext& ctx) {
     // Usage errors first: bad surface specs, and cases whose --out files would collide.
     std::set<std::string> names;
     for (const std::string& spec : a.surfaces)
-        if (!names.insert(safe_name(make_surface(spec)->spec())).second)
+        if (!names.insert(boomerang_spec(spec) ? "boomerang" : safe_name(make_surface(spec)->spec())).second)
             throw UsageError("--surface " + spec + " is given twice");
     for (const std::string& file : a.meshes)
         if (!names.insert(safe_name(std::filesystem::path(file).filename().string())).second)
@@ -266,15 +297,22 @@ void run_experiment(const ExperimentArgs& a, RunContext& ctx) {
     Progress progress("experiment", a.common.quiet);
     nlohmann::json cases = nlohmann::json::array();
     for (const std::string& spec : a.surfaces) {
+        if (const auto samples = boomerang_spec(spec)) {
+            progress.stage("deforming the boomerang (" + std::to_string(*samples) + " samples)");
+            const SurfaceMesh snapshot = boomerang_snapshot(*samples);
+            const std::string name = "boomerang snapshot (Table 3), " + std::to_string(*samples) + " samples";
+            cases.push_back(run_case(a, out_dir, name, nullptr, &snapshot, "boomerang", progress));
+            continue;
+        }
         const auto surface = make_surface(spec);
         const std::string name = surface->spec() + ", " + std::to_string(a.samples) + " uniform samples";
-        cases.push_back(run_case(a, out_dir, name, surface.get(), nullptr, progress));
+        cases.push_back(run_case(a, out_dir, name, surface.get(), nullptr, surface->spec(), progress));
     }
     for (const std::string& file : a.meshes) {
         progress.stage("reading " + file);
         const SurfaceMesh mesh = load_mesh(file);
         require_closed_manifold(mesh, file);
-        cases.push_back(run_case(a, out_dir, std::filesystem::path(file).filename().string(), nullptr, &mesh, progress));
+        cases.push_back(run_case(a, out_dir, std::filesystem::path(file).filename().string(), nullptr, &mesh, "", progress));
     }
     out.report({{"command", "experiment"}, {"criterion", a.criterion}, {"cases", cases}});
     out.commit();
@@ -312,7 +350,12 @@ void register_experiment(CLI::App& root, int& result) {
     sub->add_option("--seeds", args->seeds, "Seeds 1..N; statistics are averaged across seeds")
         ->check(CLI::Range(std::size_t{1}, std::size_t{1000}))
         ->capture_default_str();
-    sub->add_option("--surface", args->surfaces, "Analytic surfaces (repeatable)")->capture_default_str();
+    sub->add_option("--surface", args->surfaces,
+                    "Analytic surfaces (repeatable), or boomerang[:SAMPLES] for Table 3: the deforming-mesh "
+                    "boomerang (a ball stretched and bent into a 120-degree arc) at its most bent time, "
+                    "default " + std::to_string(kBoomerangSamples) +
+                        " samples (about 5.7K vertices, the paper's 5,802); dihedral statistics only")
+        ->capture_default_str();
     sub->add_option("--mesh", args->meshes, "Real meshes to worsen and smooth as well (repeatable)");
     sub->add_option("--criterion", args->criterion, "angle or delaunay")
         ->check(CLI::IsMember({"angle", "delaunay"}))

@@ -14,7 +14,6 @@
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/mesh/check.hpp"
-#include "dynmesh/mesh/unit_frame.hpp"
 
 namespace dynmesh::cli {
 
@@ -26,6 +25,7 @@ struct FlipArgs {
     std::size_t max_flips_per_vertex = 100;
     double feature_angle_deg = 180.0;
     std::string vertices_file;  ///< --vertices: flip locally around these vertex indices
+    std::string reorder = "auto";
     bool check = false;
 };
 
@@ -54,27 +54,35 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
     FlipOptions opt{.rule = rule,
                     .max_flips_per_vertex = a.max_flips_per_vertex,
                     .feature_angle_deg = a.feature_angle_deg};
+    opt.reorder = a.reorder == "always" ? FlipReorder::Always
+                  : a.reorder == "never" ? FlipReorder::Never
+                                         : FlipReorder::Auto;
     opt.progress = [&](std::size_t flips, std::size_t queued) {
         progress.detail(std::to_string(flips) + " flips, " + std::to_string(queued) + " queued");
     };
     FlipReport r;
     nlohmann::json local;
     std::vector<Vertex> V;  // --vertices
-    std::optional<ScopedUnitFrame> frame(std::in_place, mesh);  // exact; restored before writing
+    LocalFlipReport lr;
+    std::optional<SurfaceMesh> before;
     if (a.vertices_file.empty()) {
         r = flip_all(mesh, opt);
     } else {
         V = read_vertices(a.vertices_file, mesh);
-        const LocalFlipReport lr =
-            flip_local(mesh, V, {.rule = rule,
-                                 .feature_angle_deg = a.feature_angle_deg,
-                                 .max_flips_per_vertex = a.max_flips_per_vertex});
+        if (a.check) before = mesh;  // the local-mode check compares with the input
+        lr = flip_local(mesh, V, {.rule = rule,
+                                  .feature_angle_deg = a.feature_angle_deg,
+                                  .max_flips_per_vertex = a.max_flips_per_vertex});
         r = lr.flips;
         local = {{"vertices_given", V.size()},
                  {"rounds", lr.rounds},
                  {"final_m", lr.final_m},
                  {"changed_faces", lr.changed_faces.size()},
-                 {"ball_check", "first ring outside the window"}};
+                 {"window_vertices", lr.window_vertices},
+                 {"ring_faces", lr.ring_faces},
+                 {"ball_tests", lr.ball_tests},
+                 {"unchecked_balls", lr.unchecked_balls},
+                 {"ball_check", "ring outside the window (grid over ring triangles)"}};
     }
 
     nlohmann::json rep = {{"command", "flip"},
@@ -92,6 +100,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                           {"feature_angle_deg", a.feature_angle_deg},
                           {"feature_locked_tests", r.feature_locked},
                           {"converged", r.converged},
+                          {"renumbered", r.renumbered},
                           {"seconds_flip", r.seconds},
                           {"seconds_read", seconds_read}};
     if (!local.is_null()) rep["local"] = local;
@@ -112,16 +121,32 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                     second += is_flippable(mesh, SurfaceMesh::edge(h), rule, a.feature_angle_deg);
         }
         check_ok = c.ok() && second == 0;
-        rep["check"] = {{"ok", check_ok},
-                        {"problems", c.problems},
-                        {a.vertices_file.empty() ? "second_pass_flips" : "flippable_at_given_vertices", second},
-                        {"flippable_edges", d.flippable},
+        std::vector<std::string> problems = c.problems;
+        rep["check"] = {{"flippable_edges", d.flippable},
                         {"illegal_edges", d.illegal},
                         {"nonempty_shrunk_balls", d.nonempty_balls},
-                        {"unchecked_balls", d.unchecked_balls}};
-        if (!c.ok()) std::cout << c.summary("  check: ");
+                        {"unchecked_balls", d.unchecked_balls},
+                        {a.vertices_file.empty() ? "second_pass_flips" : "flippable_at_given_vertices", second}};
+        if (before) {
+            // The digest's local-mode check: F repaired, everything beyond m + 1 hops untouched.
+            const LocalFlipCheck lc = check_local_flip(
+                *before, mesh, V, lr, {.rule = rule, .feature_angle_deg = a.feature_angle_deg});
+            check_ok = check_ok && lc.ok();
+            problems.insert(problems.end(), lc.problems.begin(), lc.problems.end());
+            rep["check"]["local_check"] = {{"near_faces", lc.near_faces},
+                                           {"flippable_edges", lc.flippable_edges},
+                                           {"illegal_edges", lc.illegal_edges},
+                                           {"nonempty_balls", lc.nonempty_balls},
+                                           {"unchecked_balls", lc.unchecked_balls},
+                                           {"far_faces", lc.far_faces},
+                                           {"far_faces_changed", lc.far_faces_changed},
+                                           {"moved_vertices", lc.moved_vertices},
+                                           {"problems", lc.problems}};
+        }
+        rep["check"]["ok"] = check_ok;
+        rep["check"]["problems"] = problems;
+        for (const std::string& p : problems) std::cout << "  check: " << p << "\n";
     }
-    frame.reset();
     require_valid_output(mesh, "flip");
     progress.stage("writing " + a.output);
     t0 = Clock::now();
@@ -138,8 +163,9 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                       : ", NOT converged (window still growing after the last round, or flip cap)")
               << "\n  wrote " << a.output << "\n";
     if (!check_ok)
-        throw CheckFailed(r.converged ? "the flipped mesh violates an invariant (see the report's 'check')"
-                                      : "flipping did not converge");
+        throw CheckFailed(!r.converged ? "flipping did not converge"
+                          : before     ? "the local-mode check failed (see the report's 'check')"
+                                       : "the flipped mesh violates an invariant (see the report's 'check')");
 }
 
 struct WorsenArgs {
@@ -205,7 +231,15 @@ void register_flip(CLI::App& root, int& result) {
     sub->add_option("--vertices", args->vertices_file,
                     "Flip only around these vertices (a file of 0-based vertex indices), with the "
                     "doubling-window local method");
-    sub->add_flag("--check", args->check, "Verify the result (manifold, nothing flippable)");
+    sub->add_option("--reorder", args->reorder,
+                    "Flip a spatially renumbered copy (outputs keep the input's numbering): auto "
+                    "= for large meshes with scattered numbering")
+        ->check(CLI::IsMember({"auto", "always", "never"}))
+        ->capture_default_str();
+    sub->add_flag("--check", args->check,
+                  "Verify the result: manifold, nothing flippable (a second pass flips nothing); "
+                  "with --vertices the local-mode check (no flippable or illegal edge and no "
+                  "non-empty 0.95-ball near V, every triangle beyond m+1 hops unchanged)");
     add_common_options(*sub, args->common);
     sub->callback([args, &result] { result = guarded("flip", [&](RunContext& ctx) { run_flip(*args, ctx); }); });
 }

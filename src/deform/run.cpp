@@ -36,17 +36,19 @@ FrameMetrics unmeasured(int t) {
 
 DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     DYNMESH_CHECK(options.measure_every >= 0, "run_deform: measure_every must not be negative");
+    DYNMESH_CHECK(options.stop_after >= 0, "run_deform: stop_after must not be negative");
     const auto t_start = Clock::now();
     DeformRunReport rep;
     rep.scenario = s.name;
     rep.schedule = std::string(to_string(options.schedule));
-    const int T = s.time_units;
+    const int horizon = s.time_units;
+    const int T = options.stop_after > 0 ? std::min(options.stop_after, horizon) : horizon;  // last unit run
     rep.time_units = T;
 
     DeformParams params = options.params;
     params.lambda = s.lambda;
     params.h0 = s.h0;
-    params.horizon = T;
+    params.horizon = horizon;
     rep.kappa = params.kappa;
     rep.lambda = params.lambda;
     rep.h0 = s.h0;

@@ -1,10 +1,12 @@
 #include "dynmesh/flips/flip_rules.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/scaled_frame.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 
 namespace dynmesh {
@@ -31,13 +33,19 @@ EdgeQuad edge_quad(const SurfaceMesh& m, Edge e) {
     return {m.to_vertex(h1), m.to_vertex(h0), m.opposite_vertex(h0), m.opposite_vertex(h1)};
 }
 
-bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c) {
+namespace {
+
+// The geometric tests on points already in the unit frame (scaled_frame.hpp): the public
+// functions scale their points first, flip_verdict() scales the quad once for all of them.
+
+bool unit_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c) {
     const double l2 = std::max({sqdistance(a, b), sqdistance(b, c), sqdistance(a, c)});
     const double area = 0.5 * norm(cross(b - a, c - a));
     return !(area >= 1e-14 * l2) || l2 == 0.0;
 }
 
-bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+Def3Conditions unit_def3_conditions(const Point3& p, const Point3& q, const Point3& r,
+                                    const Point3& s) {
     // Unit vectors along the six segments; cos of the angle xyz at y is dot(e_yx, e_yz).
     const Vec3 pq = normalized(q - p), pr = normalized(r - p), ps = normalized(s - p);
     const Vec3 qr = normalized(r - q), qs = normalized(s - q), rs = normalized(s - r);
@@ -52,18 +60,18 @@ bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Poi
     const double t = kAngleSlack;
     // angle A > min(pi/2, X)  <=>  cos A < max(0, cos X)
     // angle A > max(X, Y)     <=>  cos A < min(cos X, cos Y)
-    const bool i = c_prs < std::max(0.0, c_pqs) - t && c_psr < std::max(0.0, c_pqr) - t;
-    const bool ii = c_qrs < std::max(0.0, c_qps) - t && c_qsr < std::max(0.0, c_qpr) - t;
-    const bool iii = c_rps < std::min(c_qpr, c_qps) - t && c_rqs < std::min(c_pqr, c_pqs) - t;
-    const bool iv = c_prq < std::min(c_prs, c_qrs) - t && c_psq < std::min(c_psr, c_qsr) - t;
-    if (!(i && ii && iii && iv)) return false;
+    // (Degenerate triangles make cosines NaN, and every comparison with NaN is false.)
+    Def3Conditions c;
+    c.i = c_prs < std::max(0.0, c_pqs) - t && c_psr < std::max(0.0, c_pqr) - t;
+    c.ii = c_qrs < std::max(0.0, c_qps) - t && c_qsr < std::max(0.0, c_qpr) - t;
+    c.iii = c_rps < std::min(c_qpr, c_qps) - t && c_rqs < std::min(c_pqr, c_pqs) - t;
+    c.iv = c_prq < std::min(c_prs, c_qrs) - t && c_psq < std::min(c_psr, c_qsr) - t;
     // The smallest angle has the largest cosine.
     const double old_max = std::max({c_qpr, c_pqr, c_prq, c_qps, c_pqs, c_psq});
     const double new_max = std::max({c_rps, c_prs, c_psr, c_rqs, c_qrs, c_qsr});
-    return new_max < old_max - t;
+    c.min_angle_grows = new_max < old_max - t;
+    return c;
 }
-
-namespace {
 
 /// Floating-point filter: true when x is certainly outside the diametric ball of abc (by a
 /// relative margin far above rounding error). False means "unknown": ask the exact predicate.
@@ -73,10 +81,8 @@ bool clearly_outside_ball(const Point3& a, const Point3& b, const Point3& c, con
     return std::isfinite(r2) && sqnorm(x - cc) > r2 * (1 + 1e-6);
 }
 
-}  // namespace
-
-FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& r,
-                                const Point3& s) {
+FlipVerdict unit_diametric_condition(const Point3& p, const Point3& q, const Point3& r,
+                                     const Point3& s) {
     if (clearly_outside_ball(p, q, r, s) && clearly_outside_ball(p, q, s, r)) return FlipVerdict::RuleFails;
     const bool s_in = in_diametric_ball(p, q, r, s) == Sign::Positive;
     const bool r_in = s_in || in_diametric_ball(p, q, s, r) == Sign::Positive;
@@ -86,6 +92,29 @@ FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& 
     const double new_r = std::max(circumradius(p, s, r), circumradius(q, r, s));
     // Relative slack, so that rounding of tied radii cannot make pq -> rs -> pq cycle.
     return new_r < old_r * (1.0 - 1e-12) ? FlipVerdict::Flippable : FlipVerdict::NotImproving;
+}
+
+}  // namespace
+
+bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c) {
+    const auto [u, scale] = to_unit(std::array{a, b, c});
+    return unit_degenerate_triangle(u[0], u[1], u[2]);
+}
+
+Def3Conditions def3_conditions(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    const auto [u, scale] = to_unit(std::array{p, q, r, s});
+    return unit_def3_conditions(u[0], u[1], u[2], u[3]);
+}
+
+bool def3_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    return def3_conditions(p, q, r, s).all();
+}
+
+FlipVerdict diametric_condition(const Point3& p, const Point3& q, const Point3& r,
+                                const Point3& s) {
+    // Scaling by a power of two is exact, so the exact predicates decide as on the originals.
+    const auto [u, scale] = to_unit(std::array{p, q, r, s});
+    return unit_diametric_condition(u[0], u[1], u[2], u[3]);
 }
 
 bool planar_condition(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
@@ -104,24 +133,27 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
     if (m.is_deleted(e) || m.is_boundary(e)) return FlipVerdict::Boundary;
     const EdgeQuad k = edge_quad(m, e);
     if (k.r == k.s) return FlipVerdict::DiagonalExists;
-    const Point3 &p = m.position(k.p), &q = m.position(k.q), &r = m.position(k.r),
-                 &s = m.position(k.s);
+    // The quad in its unit frame (exact scaling: the same decisions as on the originals,
+    // without overflow or underflow near the double limits).
+    const auto [u, scale] = to_unit(std::array{m.position(k.p), m.position(k.q), m.position(k.r),
+                                               m.position(k.s)});
+    const Point3 &p = u[0], &q = u[1], &r = u[2], &s = u[3];
     // The geometric rule first: most edges fail it, and it is cheaper than the edge lookup.
     FlipVerdict v = FlipVerdict::Flippable;
     if (rule == FlipRule::PlanarIncircle) {
         if (!planar_condition(p, q, r, s)) return FlipVerdict::RuleFails;
     } else if (rule == FlipRule::AngleDef3) {
         // Degenerate triangles make the cosines NaN, and every comparison with NaN fails.
-        if (!def3_condition(p, q, r, s)) return FlipVerdict::RuleFails;
-        if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s) ||
-            is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
+        if (!unit_def3_conditions(p, q, r, s).all()) return FlipVerdict::RuleFails;
+        if (unit_degenerate_triangle(p, q, r) || unit_degenerate_triangle(q, p, s) ||
+            unit_degenerate_triangle(p, s, r) || unit_degenerate_triangle(q, r, s))
             return FlipVerdict::Degenerate;
     } else {
-        if (is_degenerate_triangle(p, q, r) || is_degenerate_triangle(q, p, s))
+        if (unit_degenerate_triangle(p, q, r) || unit_degenerate_triangle(q, p, s))
             return FlipVerdict::Degenerate;  // the diametric ball is undefined
-        v = diametric_condition(p, q, r, s);
+        v = unit_diametric_condition(p, q, r, s);
         if (v == FlipVerdict::RuleFails) return v;
-        if (is_degenerate_triangle(p, s, r) || is_degenerate_triangle(q, r, s))
+        if (unit_degenerate_triangle(p, s, r) || unit_degenerate_triangle(q, r, s))
             return FlipVerdict::Degenerate;
         // Never fold: the new pair must not turn by 90 degrees or more against each other or
         // against the old pair (it cannot for dense samples, Theorem 4.1 (iv) of the deforming

@@ -7,7 +7,6 @@
 #include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/triangle.hpp"
-#include "dynmesh/mesh/unit_frame.hpp"
 
 namespace dynmesh {
 
@@ -24,7 +23,6 @@ WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& opt) {
     DYNMESH_CHECK(!mesh.has_garbage(), "worsen: the mesh has deleted elements; call garbage_collection() first");
     DYNMESH_CHECK(opt.probability >= 0 && opt.probability <= 1, "worsen: probability must lie in [0, 1]");
     WorsenReport rep;
-    const ScopedUnitFrame frame(mesh);  // dihedral tests free of overflow and underflow
     Rng rng(opt.seed);
     const double floor = deg_to_rad(opt.min_dihedral_deg);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
@@ -38,7 +36,7 @@ WorsenReport worsen(SurfaceMesh& mesh, const WorsenOptions& opt) {
         for (const auto& [a, b] : pairs) {
             if (!rng.coin(opt.probability)) continue;
             const Edge e = mesh.find_edge(Vertex(a), Vertex(b));
-            if (!e.is_valid() || !mesh.is_flip_ok(e)) continue;
+            if (!e.is_valid() || !mesh.is_flip_ok(e) || (opt.only && !opt.only(mesh, e))) continue;
             const EdgeQuad k = edge_quad(mesh, e);
             if (is_degenerate_triangle(mesh.position(k.p), mesh.position(k.s), mesh.position(k.r)) ||
                 is_degenerate_triangle(mesh.position(k.q), mesh.position(k.r), mesh.position(k.s)))

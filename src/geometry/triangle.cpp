@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <limits>
+
+#include "dynmesh/geometry/scaled_frame.hpp"
 
 namespace dynmesh {
 
-double angle_between(const Vec3& u, const Vec3& v) {
+double angle_between(const Vec3& u0, const Vec3& v0) {
+    // Each vector scaled on its own (the angle does not change): no overflow or underflow.
+    const Vec3 u = ExactScale::to_unit(std::array{u0}).apply(u0);
+    const Vec3 v = ExactScale::to_unit(std::array{v0}).apply(v0);
     // atan2 of |u x v| and u.v is accurate for angles near 0 and pi, unlike acos.
     const double s = norm(cross(u, v));
     const double c = dot(u, v);
@@ -14,13 +20,21 @@ double angle_between(const Vec3& u, const Vec3& v) {
     return std::atan2(s, c);
 }
 
-double cos_angle_at(const Point3& a, const Point3& b, const Point3& c) {
-    const Vec3 u = a - b, v = c - b;
+double angle_at(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    return angle_between(p[0] - p[1], p[2] - p[1]);
+}
+
+double cos_angle_at(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    const Vec3 u = p[0] - p[1], v = p[2] - p[1];
     const double d = std::sqrt(sqnorm(u) * sqnorm(v));
     return d > 0 ? std::clamp(dot(u, v) / d, -1.0, 1.0) : 1.0;
 }
 
-Point3 circumcenter(const Point3& a, const Point3& b, const Point3& c) {
+Point3 circumcenter(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    const Point3 &a = p[0], &b = p[1], &c = p[2];
     const Vec3 ab = b - a, ac = c - a;
     const Vec3 n = cross(ab, ac);
     const double d = 2.0 * sqnorm(n);
@@ -29,31 +43,55 @@ Point3 circumcenter(const Point3& a, const Point3& b, const Point3& c) {
         return {inf, inf, inf};
     }
     const Vec3 num = cross(n, ab) * sqnorm(ac) + cross(ac, n) * sqnorm(ab);
-    return a + num / d;
+    const Point3 x = a + num / d;
+    return {scale.length(x.x), scale.length(x.y), scale.length(x.z)};
 }
 
-double circumradius(const Point3& a, const Point3& b, const Point3& c) {
+namespace {
+
+/// Circumradius of a triangle already in the unit frame.
+double unit_circumradius(const Point3& a, const Point3& b, const Point3& c) {
     const double la = distance(b, c), lb = distance(a, c), lc = distance(a, b);
     const double area2 = norm(triangle_normal_raw(a, b, c));  // twice the area
     if (area2 == 0.0) return std::numeric_limits<double>::infinity();
     return la * lb * lc / (2.0 * area2);
 }
 
-double min_angle(const Point3& a, const Point3& b, const Point3& c) {
-    return std::min({angle_at(b, a, c), angle_at(a, b, c), angle_at(a, c, b)});
+/// The three angles of a triangle already in the unit frame.
+std::array<double, 3> unit_angles(const Point3& a, const Point3& b, const Point3& c) {
+    return {angle_between(b - a, c - a), angle_between(a - b, c - b), angle_between(a - c, b - c)};
 }
 
-double max_angle(const Point3& a, const Point3& b, const Point3& c) {
-    return std::max({angle_at(b, a, c), angle_at(a, b, c), angle_at(a, c, b)});
+}  // namespace
+
+double circumradius(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    return scale.length(unit_circumradius(p[0], p[1], p[2]));
 }
 
-double radius_edge_ratio(const Point3& a, const Point3& b, const Point3& c) {
+double min_angle(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    const auto t = unit_angles(p[0], p[1], p[2]);
+    return std::min({t[0], t[1], t[2]});
+}
+
+double max_angle(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    const auto t = unit_angles(p[0], p[1], p[2]);
+    return std::max({t[0], t[1], t[2]});
+}
+
+double radius_edge_ratio(const Point3& a0, const Point3& b0, const Point3& c0) {
+    const auto [p, scale] = to_unit(std::array{a0, b0, c0});
+    const Point3 &a = p[0], &b = p[1], &c = p[2];
     const double shortest = std::sqrt(std::min({sqdistance(a, b), sqdistance(b, c), sqdistance(a, c)}));
     if (shortest == 0.0) return std::numeric_limits<double>::infinity();
-    return circumradius(a, b, c) / shortest;
+    return unit_circumradius(a, b, c) / shortest;
 }
 
-double dihedral_angle(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+double dihedral_angle(const Point3& p0, const Point3& q0, const Point3& r0, const Point3& s0) {
+    const auto [u, scale] = to_unit(std::array{p0, q0, r0, s0});
+    const Point3 &p = u[0], &q = u[1], &r = u[2], &s = u[3];
     const Vec3 e = normalized(q - p);
     Vec3 x = r - p, y = s - p;
     x -= e * dot(x, e);

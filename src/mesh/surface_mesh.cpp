@@ -554,47 +554,78 @@ bool SurfaceMesh::remove_vertex(Vertex v) {
 
 void SurfaceMesh::garbage_collection() {
     if (!has_garbage()) return;
-    std::vector<std::uint32_t> vmap(vertices_size(), kInvalid), emap(edges_size(), kInvalid),
-        fmap(faces_size(), kInvalid);
     std::vector<std::uint32_t> vkeep, ekeep, fkeep;
     for (std::uint32_t i = 0; i < vertices_size(); ++i)
-        if (!vdeleted_[i]) { vmap[i] = static_cast<std::uint32_t>(vkeep.size()); vkeep.push_back(i); }
+        if (!vdeleted_[i]) vkeep.push_back(i);
     for (std::uint32_t i = 0; i < edges_size(); ++i)
-        if (!edeleted_[i]) { emap[i] = static_cast<std::uint32_t>(ekeep.size()); ekeep.push_back(i); }
+        if (!edeleted_[i]) ekeep.push_back(i);
     for (std::uint32_t i = 0; i < faces_size(); ++i)
-        if (!fdeleted_[i]) { fmap[i] = static_cast<std::uint32_t>(fkeep.size()); fkeep.push_back(i); }
+        if (!fdeleted_[i]) fkeep.push_back(i);
+    reindex(vkeep, ekeep, fkeep);
+}
+
+void SurfaceMesh::permute(std::span<const std::uint32_t> vertex_order,
+                          std::span<const std::uint32_t> edge_order,
+                          std::span<const std::uint32_t> face_order) {
+    DYNMESH_CHECK(!has_garbage(), "SurfaceMesh::permute: the mesh has deleted elements");
+    auto check = [](std::span<const std::uint32_t> order, std::size_t n, const char* what) {
+        DYNMESH_CHECK(order.size() == n, std::string("SurfaceMesh::permute: the ") + what +
+                                             " order has " + std::to_string(order.size()) +
+                                             " entries, expected " + std::to_string(n));
+        std::vector<char> seen(n, 0);
+        for (std::uint32_t i : order) {
+            DYNMESH_CHECK(i < n && !seen[i], std::string("SurfaceMesh::permute: the ") + what +
+                                                 " order is not a permutation");
+            seen[i] = 1;
+        }
+    };
+    check(vertex_order, vertices_size(), "vertex");
+    check(edge_order, edges_size(), "edge");
+    check(face_order, faces_size(), "face");
+    reindex(vertex_order, edge_order, face_order);
+}
+
+void SurfaceMesh::reindex(std::span<const std::uint32_t> vkeep, std::span<const std::uint32_t> ekeep,
+                          std::span<const std::uint32_t> fkeep) {
+    // Old index -> new index; elements left out of the lists map to kInvalid.
+    auto inverse = [](std::span<const std::uint32_t> keep, std::size_t n) {
+        std::vector<std::uint32_t> map(n, kInvalid);
+        for (std::uint32_t i = 0; i < keep.size(); ++i) map[keep[i]] = i;
+        return map;
+    };
+    const std::vector<std::uint32_t> vmap = inverse(vkeep, vertices_size()),
+                                     emap = inverse(ekeep, edges_size()),
+                                     fmap = inverse(fkeep, faces_size());
     auto hmap = [&](std::uint32_t h) {
         return h == kInvalid ? kInvalid : ((emap[h >> 1] << 1) | (h & 1u));
     };
     auto mapv = [&](std::uint32_t v) { return v == kInvalid ? kInvalid : vmap[v]; };
     auto mapf = [&](std::uint32_t f) { return f == kInvalid ? kInvalid : fmap[f]; };
 
-    std::vector<Point3> pos;
-    std::vector<std::uint32_t> vh;
-    pos.reserve(vkeep.size());
-    vh.reserve(vkeep.size());
-    for (std::uint32_t i : vkeep) {
-        pos.push_back(positions_[i]);
-        vh.push_back(hmap(vhalfedge_[i]));
-    }
-    std::vector<std::uint32_t> to, nx, pv, fc;
-    for (std::uint32_t e : ekeep)
-        for (std::uint32_t j = 0; j < 2; ++j) {
-            const std::uint32_t h = 2 * e + j;
-            to.push_back(mapv(hto_[h]));
-            nx.push_back(hmap(hnext_[h]));
-            pv.push_back(hmap(hprev_[h]));
-            fc.push_back(mapf(hface_[h]));
+    // Scatter each array through its map into one reused buffer (read in order, write each
+    // element at its new place), then swap: one fresh allocation instead of one per array.
+    std::vector<std::uint32_t> buf;
+    auto scatter = [&buf](std::vector<std::uint32_t>& arr, std::size_t new_size, auto&& where, auto&& value) {
+        buf.resize(new_size);
+        for (std::uint32_t i = 0; i < arr.size(); ++i) {
+            const std::uint32_t k = where(i);
+            if (k != kInvalid) buf[k] = value(arr[i]);
         }
-    std::vector<std::uint32_t> fh;
-    for (std::uint32_t f : fkeep) fh.push_back(hmap(fhalfedge_[f]));
+        arr.swap(buf);
+    };
+    auto at_v = [&](std::uint32_t i) { return vmap[i]; };
+    auto at_h = [&](std::uint32_t h) { return emap[h >> 1] == kInvalid ? kInvalid : hmap(h); };
+    auto at_f = [&](std::uint32_t i) { return fmap[i]; };
+    scatter(vhalfedge_, vkeep.size(), at_v, hmap);
+    scatter(hto_, 2 * ekeep.size(), at_h, mapv);
+    scatter(hnext_, 2 * ekeep.size(), at_h, hmap);
+    scatter(hprev_, 2 * ekeep.size(), at_h, hmap);
+    scatter(hface_, 2 * ekeep.size(), at_h, mapf);
+    scatter(fhalfedge_, fkeep.size(), at_f, hmap);
+    std::vector<Point3> pos(vkeep.size());
+    for (std::uint32_t i = 0; i < vmap.size(); ++i)
+        if (vmap[i] != kInvalid) pos[vmap[i]] = positions_[i];
     positions_.swap(pos);
-    vhalfedge_.swap(vh);
-    hto_.swap(to);
-    hnext_.swap(nx);
-    hprev_.swap(pv);
-    hface_.swap(fc);
-    fhalfedge_.swap(fh);
     vdeleted_.assign(vkeep.size(), false);
     edeleted_.assign(ekeep.size(), false);
     fdeleted_.assign(fkeep.size(), false);

@@ -25,8 +25,8 @@ void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_norm
                      &c0 = mesh.position(vs[2]);
         // In the triangle's own frame (exact scaling): no square or product below overflows
         // or underflows, whatever the size of the coordinates or of the triangle.
-        const LocalFrame<2> frame = local_frame(a0, std::array{b0, c0});
-        const Vec3 ab = frame.v[0], ac = frame.v[1], bc = ac - ab;
+        const UnitPoints<3> u = to_unit(std::array{a0, b0, c0});
+        const Vec3 ab = u.p[1] - u.p[0], ac = u.p[2] - u.p[0], bc = u.p[2] - u.p[1];
         const Vec3 n = cross(ab, ac);
         const double s = norm(n);  // twice the area
         // atan2(|u x v|, u . v), as angle_between(): accurate near 0 and 180 degrees.
@@ -41,7 +41,7 @@ void measure_faces(const SurfaceMesh& mesh, const std::vector<Vec3>* vertex_norm
         }
         const double la2 = sqnorm(bc), lb2 = sqnorm(ac), lc2 = sqnorm(ab);
         const double radius = std::sqrt(la2 * lb2 * lc2) / (2.0 * s);  // abc / (4 area)
-        circumradius.add(frame.scale.length(radius));
+        circumradius.add(u.scale.length(radius));
         radius_edge.add(radius / std::sqrt(std::min({la2, lb2, lc2})));
         if (vertex_normals != nullptr) {
             const Vec3 unit = n / s;
@@ -75,13 +75,10 @@ void measure_edges(const SurfaceMesh& mesh, QualityReport& r) {
             continue;
         }
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
-        const LocalFrame<3> frame =
-            local_frame(mesh.position(mesh.from_vertex(h)),
-                        std::array{mesh.position(mesh.to_vertex(h)),
-                                   mesh.position(mesh.to_vertex(mesh.next(h))),
-                                   mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h))))});
-        const double d =
-            180.0 - rad_to_deg(dihedral_angle(Point3{}, frame.v[0], frame.v[1], frame.v[2]));
+        const double d = 180.0 - rad_to_deg(dihedral_angle(
+                                     mesh.position(mesh.from_vertex(h)), mesh.position(mesh.to_vertex(h)),
+                                     mesh.position(mesh.to_vertex(mesh.next(h))),
+                                     mesh.position(mesh.to_vertex(mesh.next(SurfaceMesh::twin(h))))));
         dev.add(d);
         r.dihedral_dev_hist.add(d);
     }

@@ -20,11 +20,95 @@ TEST(Def3, PlanarHandCases) {
     EXPECT_TRUE(planar_def3(p, q, {0.5, 0.2, 0}, {0.5, -0.2, 0}));
     // r and s far from pq: the diagonal rs is longer and pq is Delaunay: not flippable.
     EXPECT_FALSE(planar_def3(p, q, {0.5, 2, 0}, {0.5, -2, 0}));
-    // Non-convex quad (s beyond p's side): not flippable even though the pair is skinny.
-    EXPECT_FALSE(planar_def3(p, q, {-0.6, 0.1, 0}, {-0.5, -0.1, 0}));
-    // Condition (iv) alone: s lies on the far side so that angle at r is split unevenly
-    // beyond the old angle: quad not convex at q.
-    EXPECT_FALSE(planar_def3(p, q, {1.4, 0.1, 0}, {1.3, -0.1, 0}));
+    // Non-convex quads (s beyond p's side, or beyond q's): not flippable, although the
+    // smallest angle would grow (the guard alone would let them through).
+    for (const auto& [r, s] : {std::pair<Point3, Point3>{{-0.6, 0.1, 0}, {-0.5, -0.1, 0}},
+                               std::pair<Point3, Point3>{{1.4, 0.1, 0}, {1.3, -0.1, 0}}}) {
+        const Def3Conditions c = def3_conditions(p, q, r, s);
+        EXPECT_FALSE(c.iv) << "the quad is not convex";
+        EXPECT_TRUE(c.min_angle_grows);
+        EXPECT_FALSE(c.rule());
+        EXPECT_FALSE(planar_def3(p, q, r, s));
+    }
+}
+
+// Acceptance check 1: one 3D hand case per condition, in which only that condition fails
+// while the smallest angle of the pair would still grow, so the guard cannot stand in for
+// the condition. The cases keep their verdicts when any coordinate moves by 1e-3.
+TEST(Def3, EachConditionFailingAloneIn3D) {
+    const Point3 p{0, 0, 0}, q{1, 0, 0};
+    struct Case {
+        const char* name;
+        Point3 r, s;
+        Def3Conditions expected;
+    };
+    const Case cases[] = {
+        {"(i)", {0.1, 0.1, -0.2}, {1.0, -0.2, 0.0}, {.i = false, .ii = true, .iii = true, .iv = true}},
+        {"(ii)", {-0.5, 0.1, -0.3}, {0.4, -0.1, 0.0}, {.i = true, .ii = false, .iii = true, .iv = true}},
+        {"(iii)", {-0.1, 0.2, -0.2}, {0.4, -0.1, -0.1}, {.i = true, .ii = true, .iii = false, .iv = true}},
+    };
+    for (const Case& k : cases) {
+        const Def3Conditions c = def3_conditions(p, q, k.r, k.s);
+        EXPECT_EQ(c.i, k.expected.i) << k.name;
+        EXPECT_EQ(c.ii, k.expected.ii) << k.name;
+        EXPECT_EQ(c.iii, k.expected.iii) << k.name;
+        EXPECT_EQ(c.iv, k.expected.iv) << k.name;
+        EXPECT_TRUE(c.min_angle_grows) << k.name << ": the guard holds";
+        EXPECT_FALSE(c.rule()) << k.name;
+        EXPECT_FALSE(def3_condition(p, q, k.r, k.s)) << k.name;
+        // As a mesh: the edge is refused by the rule, not by the guard or the topology.
+        TriangleSoup soup;
+        soup.points = {p, q, k.r, k.s};
+        soup.triangles = {{0, 1, 2}, {1, 0, 3}};
+        const SurfaceMesh m = SurfaceMesh::from_soup(soup);
+        EXPECT_EQ(flip_verdict(m, m.find_edge(Vertex(0), Vertex(1)), FlipRule::AngleDef3), FlipVerdict::RuleFails)
+            << k.name;
+    }
+    // Condition (iv) never fails alone: when (i)-(iii) hold, (iv) holds too (see
+    // ConditionsOneToThreeImplyFour), so its hand case fails together with (i) and (iii).
+    const Def3Conditions c = def3_conditions(p, q, {1.4, 0.1, 0.3}, {1.3, -0.1, -0.2});
+    EXPECT_FALSE(c.iv);
+    EXPECT_FALSE(c.rule());
+}
+
+// The angle algebra behind Definition 3: (i) and (iii) give angle prq > angle prs when the
+// old angle at q is acute, and (ii) and (iii) give angle prq > angle qrs likewise, so (iv)
+// is implied in practice. Measured on random 3D quads, including obtuse ones.
+TEST(Def3, ConditionsOneToThreeImplyFour) {
+    Rng rng(5);
+    std::size_t hold = 0;
+    for (int i = 0; i < 1500000; ++i) {
+        const double sc = i % 3 == 0 ? 0.3 : i % 3 == 1 ? 1.5 : 4.0;
+        const Point3 p{0, 0, 0}, q{1, 0, 0};
+        const Point3 r{rng.uniform(-sc, 1 + sc), rng.uniform(-sc, sc), rng.uniform(-sc, sc)};
+        const Point3 s{rng.uniform(-sc, 1 + sc), rng.uniform(-sc, sc), rng.uniform(-sc, sc)};
+        const Def3Conditions c = def3_conditions(p, q, r, s);
+        if (!(c.i && c.ii && c.iii)) continue;
+        ++hold;
+        ASSERT_TRUE(c.iv) << "case " << i;
+    }
+    EXPECT_GT(hold, 50000u);
+}
+
+// The rule without the guard: whenever Definition 3 (i)-(iv) holds, the smallest angle of
+// the new pair exceeds that of the old pair (the paper's termination argument), so the
+// guard only matters within rounding.
+TEST(Def3, RuleAloneRaisesTheMinimumAngle) {
+    Rng rng(11);
+    std::size_t rule = 0;
+    for (int i = 0; i < 500000; ++i) {
+        const Point3 p{0, 0, 0}, q{1, 0, 0};
+        const Point3 r{rng.uniform(-0.5, 1.5), rng.uniform(-0.2, 1.5), rng.uniform(-0.6, 0.6)};
+        const Point3 s{rng.uniform(-0.5, 1.5), rng.uniform(-1.5, 0.2), rng.uniform(-0.6, 0.6)};
+        const Def3Conditions c = def3_conditions(p, q, r, s);
+        if (!c.rule()) continue;
+        ++rule;
+        const double before = std::min(min_angle(p, q, r), min_angle(q, p, s));
+        const double after = std::min(min_angle(p, s, r), min_angle(q, r, s));
+        ASSERT_GT(after, before) << "case " << i;
+        ASSERT_TRUE(c.min_angle_grows) << "case " << i;
+    }
+    EXPECT_GT(rule, 10000u);
 }
 
 TEST(Def3, DiagonalAlreadyAnEdgeIsNotFlippable) {
@@ -72,10 +156,11 @@ TEST(Def3, PlanarEquivalenceOnRandomQuads) {
         if (std::abs(cross(s2 - r2, p2 - r2)) < 1e-6 || std::abs(cross(s2 - r2, q2 - r2)) < 1e-6) continue;
         if (min_angle(p, q, r) < 1e-3 || min_angle(p, q, s) < 1e-3) continue;
         ++tested;
-        const bool def3 = def3_condition(p, q, r, s);
+        const Def3Conditions def3 = def3_conditions(p, q, r, s);
         const bool del = planar_condition(p, q, r, s);
         flippable += del;
-        agree += def3 == del;
+        // Definition 3 itself (without the guard) and what flipping uses (with it).
+        agree += def3.rule() == del && def3.all() == del;
     }
     EXPECT_GT(tested, 900000u);
     EXPECT_GT(flippable, tested / 10);  // both outcomes occur often

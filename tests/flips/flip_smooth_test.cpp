@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "dynmesh/error.hpp"
@@ -11,6 +13,9 @@
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/mesh_order.hpp"
+#include "dynmesh/reconstruct/restricted_delaunay.hpp"
+#include "dynmesh/shapes/analytic.hpp"
 #include "test_support.hpp"
 
 namespace dynmesh {
@@ -62,7 +67,6 @@ TEST(FlipAll, WorsenThenSmoothRestoresTheMesh) {
         const FlipReport r = flip_all(m);
         EXPECT_TRUE(r.converged);
         EXPECT_GT(r.flips, 0u);
-        EXPECT_GE(r.checks, m.n_edges());
         // Integrity (acceptance check 5).
         const auto chk = check_mesh(m, {.require_closed = true});
         EXPECT_TRUE(chk.ok()) << chk.summary();
@@ -84,6 +88,57 @@ TEST(FlipAll, WorsenThenSmoothRestoresTheMesh) {
         // Rule cross-check (check 10).
         const auto dd = flip_diagnostics(m, FlipRule::DiametricBall);
         EXPECT_LE(double(dd.flippable), 0.01 * double(dd.edges));
+    }
+}
+
+/// `m` with every position multiplied by `s`, followed by a regular tetrahedron at 1e308.
+SurfaceMesh scaled_with_a_giant(const SurfaceMesh& m, double s) {
+    TriangleSoup soup = m.to_soup();
+    for (Point3& p : soup.points) p = p * s;
+    const auto o = static_cast<std::uint32_t>(soup.points.size());
+    for (const Point3& p : {Point3{1, 1, 1}, Point3{1, -1, -1}, Point3{-1, 1, -1}, Point3{-1, -1, 1}})
+        soup.points.push_back(p * 1e308);
+    for (const auto& t : std::vector<std::array<std::uint32_t, 3>>{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}})
+        soup.triangles.push_back({t[0] + o, t[1] + o, t[2] + o});
+    return SurfaceMesh::from_soup(soup);
+}
+
+/// jittered_sphere with coordinates rounded to multiples of 2^-40, so that scaling by any
+/// power of two down to 2^-1030 (subnormal) is exact.
+SurfaceMesh quantized_sphere() {
+    SurfaceMesh m = jittered_sphere(3, 5);
+    for (Point3& p : m.positions()) p = {std::ldexp(std::round(std::ldexp(p.x, 40)), -40),
+                                         std::ldexp(std::round(std::ldexp(p.y, 40)), -40),
+                                         std::ldexp(std::round(std::ldexp(p.z, 40)), -40)};
+    return m;
+}
+
+TEST(FlipAll, DecisionsDoNotDependOnTheMagnitudeOfTheCoordinates) {
+    // A worsened sphere smoothed at unit size, and the same sphere scaled by 2^-40, 2^1000
+    // (squares overflow) or 2^-1030 (subnormal), sharing its mesh with a tetrahedron at
+    // 1e308: the same flips, triangle for triangle.
+    SurfaceMesh unit = quantized_sphere();
+    (void)worsen(unit, {.seed = 2});
+    const std::size_t faces = unit.n_faces();
+    SurfaceMesh smoothed = scaled_with_a_giant(unit, 1.0);  // the same numbering as below
+    const FlipReport ref = flip_all(smoothed, {});
+    ASSERT_GT(ref.flips, 50u);
+    const auto triangles = [&](const SurfaceMesh& m) {
+        auto t = m.to_soup().triangles;
+        t.resize(faces);  // the sphere's faces come first
+        return t;
+    };
+    for (const double s : {0x1p-40, 0x1p1000, 0x1p-1030}) {
+        SCOPED_TRACE(s);
+        SurfaceMesh mixed = scaled_with_a_giant(unit, s);
+        const FlipReport r = flip_all(mixed, {});
+        EXPECT_EQ(r.flips, ref.flips);
+        EXPECT_EQ(triangles(mixed), triangles(smoothed));
+        // And worsening decides the same at every magnitude too.
+        SurfaceMesh w1 = scaled_with_a_giant(quantized_sphere(), 1.0);
+        SurfaceMesh w2 = scaled_with_a_giant(quantized_sphere(), s);
+        EXPECT_EQ(worsen(w1, {.seed = 9}).flips, worsen(w2, {.seed = 9}).flips);
+        EXPECT_EQ(triangles(w2), triangles(w1));
     }
 }
 
@@ -145,49 +200,249 @@ TEST(Planar, FlipsToCgalDelaunay) {
                   *std::min_element(ratio.begin(), ratio.end()), 1.5);
 }
 
-TEST(FlipLocal, RepairsAWorsenedCapAndLeavesTheRestAlone) {
-    SurfaceMesh initial = jittered_sphere(5, 21);
-    SurfaceMesh m = initial;
-    // Worsen only a cap around the north pole: worsen a copy, then transplant? Simpler: flip
-    // random edges inside the cap with the worsening rule, by worsening a cap-only submesh is
-    // not possible in place, so do it by hand.
-    Rng rng(3);
+/// Worsens the cap z > 0.9 of a sphere mesh with the paper's procedure (random flips that
+/// keep every dihedral angle >= 120 degrees) restricted to edges with both ends above
+/// z = 0.92; returns the cap's vertices.
+std::vector<Vertex> worsen_cap(SurfaceMesh& m, std::uint64_t seed) {
     std::vector<Vertex> cap;
     for (Vertex v : m.vertices())
         if (m.position(v).z > 0.9) cap.push_back(v);
-    ASSERT_GT(cap.size(), 20u);
-    std::size_t flipped = 0;
-    for (int round = 0; round < 3; ++round)
-        for (Edge e : m.edges()) {
-            const Point3 a = m.position(m.vertex(e, 0)), b = m.position(m.vertex(e, 1));
-            if (a.z < 0.92 || b.z < 0.92 || !rng.coin() || !m.is_flip_ok(e)) continue;
-            m.flip(e);
-            ++flipped;
+    const WorsenReport w = worsen(m, {.seed = seed, .only = [](const SurfaceMesh& mesh, Edge e) {
+        return mesh.position(mesh.vertex(e, 0)).z > 0.92 && mesh.position(mesh.vertex(e, 1)).z > 0.92;
+    }});
+    EXPECT_GT(w.flips, 20u);
+    return cap;
+}
+
+// Acceptance check 9 (digest §7): after flip_local, F (the triangles within 1 hop of V) has
+// no flippable or illegal edge and no non-empty shrunken ball, and every triangle more than
+// final m + 1 hops away is bit-identical to before.
+TEST(FlipLocal, RepairsAWorsenedCapAndLeavesTheRestAlone) {
+    for (std::uint64_t seed : {3u, 4u}) {
+        SurfaceMesh m = jittered_sphere(5, 21);
+        const std::vector<Vertex> cap = worsen_cap(m, seed);
+        ASSERT_GT(cap.size(), 20u);
+        const SurfaceMesh worsened = m;
+        const LocalFlipCheck bad = check_local_flip(worsened, worsened, cap, {.final_m = 3, .converged = true});
+        ASSERT_GT(bad.flippable_edges, 0u) << "the cap is not worsened";
+        ASSERT_GT(bad.illegal_edges, 0u);
+
+        const LocalFlipReport r = flip_local(m, cap);
+        EXPECT_TRUE(r.converged);
+        EXPECT_GT(r.flips.flips, 0u);
+        EXPECT_GE(r.window_vertices, cap.size());
+        const auto chk = check_mesh(m, {.require_closed = true});
+        EXPECT_TRUE(chk.ok()) << chk.summary();
+        const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+        EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
+        EXPECT_GT(c.near_faces, 2 * cap.size());
+        EXPECT_GT(c.far_faces, m.n_faces() / 2) << "most of the sphere is far from the cap";
+        EXPECT_EQ(c.unchecked_balls, 0u);
+        std::printf("flip_local: %zu cap vertices, %zu rounds, final m %zu, %zu flips, window %zu vertices\n",
+                    cap.size(), r.rounds, r.final_m, r.flips.flips, r.window_vertices);
+    }
+}
+
+TEST(FlipLocal, CheckFindsChangesFarAwayAndMovedVertices) {
+    SurfaceMesh m = jittered_sphere(4, 5);
+    const std::vector<Vertex> cap = worsen_cap(m, 1);
+    const SurfaceMesh worsened = m;
+    const LocalFlipReport r = flip_local(m, cap);
+    ASSERT_TRUE(check_local_flip(worsened, m, cap, r).ok());
+    // A flip near the south pole is beyond final_m + 1 hops of the cap.
+    SurfaceMesh far = m;
+    Edge south;
+    for (Edge e : far.edges())
+        if (far.position(far.vertex(e, 0)).z < -0.95 && far.is_flip_ok(e)) south = e;
+    ASSERT_TRUE(south.is_valid());
+    far.flip(south);
+    const LocalFlipCheck c = check_local_flip(worsened, far, cap, r);
+    EXPECT_EQ(c.far_faces_changed, 2u);
+    EXPECT_FALSE(c.ok());
+    SurfaceMesh moved = m;
+    moved.position(Vertex(0)).x = std::nextafter(moved.position(Vertex(0)).x, 2.0);
+    const LocalFlipCheck d = check_local_flip(worsened, moved, cap, r);
+    EXPECT_EQ(d.moved_vertices, 1u);
+    EXPECT_FALSE(d.ok());
+    EXPECT_FALSE(check_local_flip(worsened, m, cap, {.final_m = r.final_m, .converged = false}).ok());
+}
+
+// The ball test searches the whole mesh: a sheet of the surface that folds back over F is
+// caught even though it is topologically far. Two parallel grids 0.1 apart, joined
+// nowhere: the far one's vertices lie inside the balls of the near one's triangles.
+TEST(FlipLocal, CheckCatchesAFoldFromElsewhere) {
+    TriangleSoup soup;
+    const SurfaceMesh a = test::grid(6);
+    const TriangleSoup sa = a.to_soup();
+    soup = sa;
+    for (Point3 p : sa.points) soup.points.push_back({p.x + 0.5, p.y + 0.5, 0.1});
+    const auto n = static_cast<std::uint32_t>(sa.points.size());
+    for (auto t : sa.triangles) soup.triangles.push_back({t[0] + n, t[2] + n, t[1] + n});
+    const SurfaceMesh two = SurfaceMesh::from_soup(soup);
+    const std::vector<Vertex> V = {Vertex(3 * 7 + 3)};  // the middle of the first grid
+    const LocalFlipCheck c = check_local_flip(two, two, V, {.final_m = 3, .converged = true});
+    EXPECT_GT(c.nonempty_balls, 0u);
+    EXPECT_EQ(c.illegal_edges, 0u) << "the near sheet itself is Delaunay";
+    // Without the other sheet, the same triangles have empty balls.
+    const LocalFlipCheck alone = check_local_flip(a, a, V, {.final_m = 3, .converged = true});
+    EXPECT_EQ(alone.nonempty_balls, 0u);
+}
+
+// The stop test (LocalFlipReport) against an all-pairs version written here: on a mesh that
+// is already flipped, flip_local makes no flip, so its final m is the first m0 * 2^k at
+// which no diametric ball of F meets a ring triangle.
+TEST(FlipLocal, StopTestMatchesAnAllPairsSearch) {
+    const Sphere sphere({0, 0, 0}, 1.0);
+    SurfaceMesh m = restricted_delaunay(sphere.sample_uniform(3000, 4), sphere);
+    ASSERT_TRUE(flip_all(m).converged);
+    auto all_pairs_pass = [&](std::span<const Vertex> V, std::size_t mm) {
+        IndexMap<std::uint32_t> hops;
+        hop_distances(m, V, mm + 1, hops);
+        auto hop = [&](Vertex v) { return hops.contains(v.idx()) ? std::size_t(*hops.find(v.idx())) : mm + 2; };
+        std::vector<Face> F, ring;
+        for (Face f : m.faces()) {
+            const auto c = m.face_vertices(f);
+            const std::size_t lo = std::min({hop(c[0]), hop(c[1]), hop(c[2])});
+            const std::size_t hi = std::max({hop(c[0]), hop(c[1]), hop(c[2])});
+            if (lo <= 1) F.push_back(f);
+            if (hi > mm && lo <= mm + 1) ring.push_back(f);
         }
-    ASSERT_GT(flipped, 10u);
+        for (Face f : F) {
+            const auto c = m.face_vertices(f);
+            const Point3 cc = circumcenter(m.position(c[0]), m.position(c[1]), m.position(c[2]));
+            const double rad = distance(cc, m.position(c[0]));
+            for (Face g : ring) {
+                const auto d = m.face_vertices(g);
+                if (closest_point_on_triangle(cc, m.position(d[0]), m.position(d[1]), m.position(d[2])).distance < rad)
+                    return false;
+            }
+        }
+        return true;
+    };
+    Rng rng(2);
+    std::set<std::pair<std::size_t, std::size_t>> seen;  // (m0, final m)
+    for (int trial = 0; trial < 60; ++trial) {
+        std::vector<Vertex> V;
+        for (int k = 0; k < 1 + trial % 5; ++k) V.push_back(Vertex(static_cast<std::uint32_t>(rng.below(m.n_vertices()))));
+        const std::size_t m0 = trial % 2 ? 1 : 3;
+        SurfaceMesh c = m;
+        const LocalFlipReport r = flip_local(c, V, {.m0 = m0});
+        ASSERT_EQ(r.flips.flips, 0u);
+        std::size_t expect = m0;
+        while (!all_pairs_pass(V, expect)) expect *= 2;
+        EXPECT_EQ(r.final_m, expect) << "trial " << trial;
+        seen.emplace(m0, r.final_m);
+    }
+    // Both outcomes of the test occur: windows that had to grow and first windows that pass.
+    EXPECT_TRUE(seen.count({1, 4}) || seen.count({1, 8}));
+    EXPECT_TRUE(seen.count({3, 3}));
+    for (const auto& [m0, fm] : seen) std::printf("m0 %zu -> final m %zu\n", m0, fm);
+}
+
+// The whole sphere is worsened, but only the cap is repaired: flips stay inside the window,
+// although the queue would find flippable edges everywhere beyond it.
+TEST(FlipLocal, LeavesAWorsenedRestAlone) {
+    SurfaceMesh m = jittered_sphere(5, 8);
+    (void)worsen(m, {.seed = 8});
+    std::vector<Vertex> cap;
+    for (Vertex v : m.vertices())
+        if (m.position(v).z > 0.95) cap.push_back(v);
     const SurfaceMesh worsened = m;
     const LocalFlipReport r = flip_local(m, cap);
     EXPECT_TRUE(r.converged);
-    EXPECT_GE(r.rounds, 1u);
-    EXPECT_GT(r.flips.flips, 0u);
-    EXPECT_FALSE(r.changed_faces.empty());
-    const auto chk = check_mesh(m, {.require_closed = true});
-    EXPECT_TRUE(chk.ok()) << chk.summary();
-    // No flippable edge left near the cap.
-    for (Vertex v : cap)
-        for (Halfedge h : m.outgoing_halfedges(v))
-            EXPECT_FALSE(is_flippable(m, SurfaceMesh::edge(h), FlipRule::AngleDef3));
-    // Faces never touched are bit-identical to before.
-    std::set<std::uint32_t> changed;
-    for (Face f : r.changed_faces) changed.insert(f.idx());
-    for (Face f : m.faces())
-        if (!changed.count(f.idx())) {
-            EXPECT_EQ(m.face_vertices(f), worsened.face_vertices(f));
-            EXPECT_GT(m.position(m.face_vertices(f)[0]).z, -2.0);
+    const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+    EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
+    EXPECT_GT(c.far_faces, m.n_faces() / 2);
+    EXPECT_GT(flip_diagnostics(m, FlipRule::AngleDef3).flippable, 100u) << "the rest is still worsened";
+    // One round with a one-hop window: it flips only edges with both ends within 1 hop of V
+    // in the input, so every triangle it changes has its three corners within 2 hops there,
+    // although the queue would find flippable edges farther out.
+    std::size_t changed = 0;
+    for (std::uint32_t v = 5; v < m.n_vertices(); v += 97) {
+        SurfaceMesh one = worsened;
+        const std::vector<Vertex> V = {Vertex(v)};
+        const LocalFlipReport r1 = flip_local(one, V, {.m0 = 1, .max_rounds = 1});
+        IndexMap<std::uint32_t> hops;
+        hop_distances(worsened, V, 2, hops);
+        for (Face f : one.faces()) {
+            const auto c = one.face_vertices(f);
+            if (c == worsened.face_vertices(f)) continue;
+            ++changed;
+            for (Vertex x : c) EXPECT_TRUE(hops.contains(x.idx())) << "vertex " << v << ": a flip outside the window";
         }
-    // Far from the cap nothing changed at all.
-    for (Face f : r.changed_faces)
-        for (Vertex v : m.face_vertices(f)) EXPECT_GT(m.position(v).z, 0.5);
+        EXPECT_EQ(check_local_flip(worsened, one, V, r1).far_faces_changed, 0u);
+    }
+    EXPECT_GT(changed, 100u);
+}
+
+// With a first window of one hop, the edges of F reach outside it, so the stop test must
+// grow the window before F can be repaired.
+TEST(FlipLocal, WindowGrowsUntilFIsRepaired) {
+    SurfaceMesh m = jittered_sphere(5, 21);
+    const std::vector<Vertex> cap = worsen_cap(m, 3);
+    const SurfaceMesh worsened = m;
+    const LocalFlipReport r = flip_local(m, cap, {.m0 = 1});
+    EXPECT_TRUE(r.converged);
+    EXPECT_GE(r.rounds, 2u);
+    const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+    EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
+}
+
+// flip_all in a spatially renumbered mesh: the same result as renumbering by hand, flipping
+// in that numbering and numbering back; the caller's vertices untouched.
+TEST(FlipAll, RenumberedRunKeepsTheCallersNumbering) {
+    const SurfaceMesh initial = test::shuffled(jittered_sphere(4, 2), 3);
+    SurfaceMesh worsened = initial;
+    (void)worsen(worsened, {.seed = 2});
+    SurfaceMesh a = worsened;
+    const FlipReport ra = flip_all(a, {.reorder = FlipReorder::Always});
+    EXPECT_TRUE(ra.renumbered);
+    EXPECT_TRUE(ra.converged);
+    EXPECT_EQ(a.positions(), worsened.positions());
+    const auto chk = check_mesh(a, {.require_closed = true});
+    EXPECT_TRUE(chk.ok()) << chk.summary();
+    EXPECT_EQ(flip_diagnostics(a, FlipRule::AngleDef3).flippable, 0u);
+    SurfaceMesh b = worsened;
+    const MeshOrder order = spatial_mesh_order(b);
+    permute(b, order);
+    const FlipReport rb = flip_all(b, {.reorder = FlipReorder::Never});
+    EXPECT_FALSE(rb.renumbered);
+    permute(b, inverse(order));
+    EXPECT_EQ(test::mesh_difference(a, b), "");
+    EXPECT_EQ(ra.flips, rb.flips);
+    // In the caller's numbering the run is a different (non-spatial) order of the same rule.
+    SurfaceMesh c = worsened;
+    const FlipReport rc = flip_all(c, {.reorder = FlipReorder::Never});
+    EXPECT_TRUE(rc.converged);
+    EXPECT_EQ(flip_diagnostics(c, FlipRule::AngleDef3).flippable, 0u);
+}
+
+TEST(FlipAll, AutoRenumbersLargeScatteredMeshesOnly) {
+    const SurfaceMesh big = test::icosphere(6);  // 40962 vertices
+    ASSERT_LT(big.n_vertices(), kReorderMinVertices);
+    SurfaceMesh small_shuffled = test::shuffled(big, 1);
+    EXPECT_FALSE(flip_all(small_shuffled).renumbered) << "fits in cache: not worth it";
+    TriangleSoup s = big.to_soup();
+    // Four shifted copies: 163848 vertices.
+    const std::size_t n = s.points.size(), t = s.triangles.size();
+    for (int k = 1; k < 4; ++k) {
+        for (std::size_t i = 0; i < n; ++i) s.points.push_back(s.points[i] + Vec3{3.0 * k, 0, 0});
+        for (std::size_t i = 0; i < t; ++i) {
+            auto tr = s.triangles[i];
+            for (auto& v : tr) v += static_cast<std::uint32_t>(k * n);
+            s.triangles.push_back(tr);
+        }
+    }
+    SurfaceMesh four = SurfaceMesh::from_soup(s);
+    ASSERT_GE(four.n_vertices(), kReorderMinVertices);
+    SurfaceMesh sorted = four;
+    permute(sorted, spatial_mesh_order(sorted));
+    EXPECT_FALSE(flip_all(sorted).renumbered);
+    SurfaceMesh scattered = test::shuffled(four, 2);
+    const SurfaceMesh before = scattered;
+    const FlipReport r = flip_all(scattered);
+    EXPECT_TRUE(r.renumbered);
+    EXPECT_EQ(scattered.positions(), before.positions());
 }
 
 }  // namespace

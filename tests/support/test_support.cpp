@@ -1,6 +1,9 @@
 #include "test_support.hpp"
 
+#include <cstring>
 #include <map>
+
+#include "dynmesh/mesh/mesh_order.hpp"
 
 namespace dynmesh::test {
 
@@ -78,6 +81,35 @@ SurfaceMesh grid(int n) {
             s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
         }
     return SurfaceMesh::from_soup(s);
+}
+
+std::string mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b) {
+    if (a.vertices_size() != b.vertices_size() || a.edges_size() != b.edges_size() ||
+        a.faces_size() != b.faces_size())
+        return "sizes differ";
+    for (std::uint32_t i = 0; i < a.vertices_size(); ++i) {
+        const Vertex v(i);
+        if (a.is_deleted(v) != b.is_deleted(v) || a.halfedge(v) != b.halfedge(v) ||
+            std::memcmp(&a.position(v), &b.position(v), sizeof(Point3)) != 0)
+            return "vertex " + std::to_string(i) + " differs";
+    }
+    for (std::uint32_t i = 0; i < a.halfedges_size(); ++i) {
+        const Halfedge h(i);
+        if (a.is_deleted(h) != b.is_deleted(h) || a.to_vertex(h) != b.to_vertex(h) || a.next(h) != b.next(h) ||
+            a.prev(h) != b.prev(h) || a.face(h) != b.face(h))
+            return "halfedge " + std::to_string(i) + " differs";
+    }
+    for (std::uint32_t i = 0; i < a.faces_size(); ++i) {
+        const Face f(i);
+        if (a.is_deleted(f) != b.is_deleted(f) || a.halfedge(f) != b.halfedge(f))
+            return "face " + std::to_string(i) + " differs";
+    }
+    return "";
+}
+
+SurfaceMesh shuffled(SurfaceMesh mesh, std::uint64_t seed) {
+    permute(mesh, random_mesh_order(mesh, seed));
+    return mesh;
 }
 
 }  // namespace dynmesh::test

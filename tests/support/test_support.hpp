@@ -1,6 +1,7 @@
 #pragma once
 /// \file Fixtures and checkers shared by the tests.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -20,5 +21,11 @@ SurfaceMesh icosphere(int level);
 double signed_volume(const SurfaceMesh& mesh);
 /// A planar square grid of n x n quads split into triangles (open, with boundary).
 SurfaceMesh grid(int n);
+/// Empty when a and b are the same mesh element for element (connectivity of every
+/// halfedge, vertex and face, positions bit for bit, deletion flags); else the first
+/// difference, in words.
+std::string mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b);
+/// The mesh with its vertices, edges and faces renumbered at random (random_mesh_order).
+SurfaceMesh shuffled(SurfaceMesh mesh, std::uint64_t seed);
 
 }  // namespace dynmesh::test

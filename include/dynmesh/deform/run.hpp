@@ -48,6 +48,9 @@ struct DeformRunOptions {
     MeasureOptions measure{.hausdorff = true, .self_intersections = true, .sampling_radius = true};
     /// Run DeformingMesh::check_invariants() after every update (reported, never fatal).
     bool check_invariants = false;
+    /// Stop after this time unit (0: run to the scenario's horizon). The schedule still plans
+    /// for the whole horizon; "the end" of the run (final measure, time_units) is this unit.
+    int stop_after = 0;
     std::function<void(const DeformFrame&)> on_frame;
 };
 

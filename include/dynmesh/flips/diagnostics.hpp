@@ -2,8 +2,12 @@
 /// \file Post-conditions of flip smoothing that tests and `--check` measure.
 
 #include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/flips/flip_smooth.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh {
@@ -25,5 +29,43 @@ struct FlipDiagnostics {
 /// bounded local density.
 [[nodiscard]] FlipDiagnostics flip_diagnostics(const SurfaceMesh& mesh, FlipRule rule,
                                                double ball_shrink = 0.95);
+
+struct LocalFlipCheckOptions {
+    FlipRule rule = FlipRule::AngleDef3;  ///< the rule flip_local() ran with
+    double feature_angle_deg = 180.0;     ///< ... and its sharp-feature guard
+    double ball_shrink = 0.95;
+};
+
+/// The local-mode acceptance check of the edge-flip digest (§7 item 9) for a flip_local()
+/// run that turned `before` into `after`. F = the triangles of `after` with a corner within
+/// 1 hop of V; far = the triangles with every corner more than report.final_m + 1 hops from
+/// V, counting hops along the edges of `before` and of `after` together. (Flips change the
+/// edge graph: a window vertex whose long edges were flipped away can end up farther from V
+/// in `after` than the window that flipped them, and in `before` new short edges are
+/// missing. In the union every flip of the run stays within final_m hops, as measured on
+/// worsened spheres with one to three rounds.)
+struct LocalFlipCheck {
+    std::size_t near_faces = 0;         ///< |F|
+    std::size_t flippable_edges = 0;    ///< edges of F flippable under the rule
+    std::size_t illegal_edges = 0;      ///< edges of F that are illegal (Definition 4)
+    std::size_t nonempty_balls = 0;     ///< triangles of F whose shrunken ball holds a vertex
+    std::size_t unchecked_balls = 0;    ///< triangles of F whose ball could not be searched
+    std::size_t far_faces = 0;          ///< far triangles compared with `before`
+    std::size_t far_faces_changed = 0;  ///< far triangles that are not bit-identical
+    std::size_t moved_vertices = 0;     ///< vertices whose position changed (bits)
+    /// One line per violated condition (empty: the check passes): the run did not converge,
+    /// a vertex moved, a far triangle changed, or F has a flippable or illegal edge or a
+    /// non-empty shrunken ball.
+    std::vector<std::string> problems;
+    [[nodiscard]] bool ok() const { return problems.empty(); }
+};
+
+/// Runs the check. The ball test searches every vertex of `after` through a uniform grid,
+/// so a fold from elsewhere on the surface is caught; O(mesh size).
+/// \pre before and after have no garbage. \throw InvalidInput when their element counts
+///      differ or V names a vertex outside the mesh.
+[[nodiscard]] LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after,
+                                              std::span<const Vertex> V, const LocalFlipReport& report,
+                                              const LocalFlipCheckOptions& options = {});
 
 }  // namespace dynmesh

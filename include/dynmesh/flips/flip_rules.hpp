@@ -43,9 +43,27 @@ struct EdgeQuad {
 /// Relative cosine slack of Definition 3 (strict inequalities by this margin).
 inline constexpr double kAngleSlack = 1e-12;
 
-/// Definition 3 (i)-(iv) for the points of the quad, without the edge test (v); also
-/// requires that the smallest angle of the new pair beats that of the old pair by more than
-/// kAngleSlack (in cosine), so that rounding cannot make flips cycle.
+/// The four geometric conditions of Definition 3 for the quad p, q, r, s, each evaluated
+/// by cosines with the strict slack kAngleSlack (§2.4 of the digest):
+///   (i)   angle prs > min(pi/2, angle pqs)  and  angle psr > min(pi/2, angle pqr)
+///   (ii)  angle qrs > min(pi/2, angle qps)  and  angle qsr > min(pi/2, angle qpr)
+///   (iii) angle rps > max(angle rpq, angle spq)  and  angle rqs > max(angle rqp, angle sqp)
+///   (iv)  angle prq > max(angle prs, angle qrs)  and  angle psq > max(angle psr, angle qsr)
+/// plus the anti-cycling guard, which is not part of the definition: the smallest angle of
+/// the new pair (prs, qrs) beats that of the old pair (pqr, qps) by more than kAngleSlack in
+/// cosine.
+struct Def3Conditions {
+    bool i = false, ii = false, iii = false, iv = false;
+    bool min_angle_grows = false;  ///< the guard
+    /// Definition 3 (i)-(iv), without the guard.
+    [[nodiscard]] bool rule() const { return i && ii && iii && iv; }
+    /// What flipping requires: the rule and the guard.
+    [[nodiscard]] bool all() const { return rule() && min_angle_grows; }
+};
+[[nodiscard]] Def3Conditions def3_conditions(const Point3& p, const Point3& q, const Point3& r,
+                                             const Point3& s);
+/// def3_conditions(p, q, r, s).all(): Definition 3 (i)-(iv) and the guard, without the edge
+/// test (v).
 [[nodiscard]] bool def3_condition(const Point3& p, const Point3& q, const Point3& r,
                                   const Point3& s);
 /// The diametric rule (exact predicates): s strictly inside the diametric ball of pqr or r

@@ -52,40 +52,25 @@ private:
     double factor_ = 1.0;
 };
 
-/// The vectors from `origin` to `points`, scaled by one exact power of two so that their
-/// largest component lies in [1, 2): the frame in which the shape of a triangle (or of a
-/// pair of triangles) is measured. Every square and product of these vectors stays a normal
-/// number, whatever the magnitude of the coordinates (near 1e308, subnormal) or of the
-/// triangle itself (a 1e-170 triangle in a unit mesh). `scale.length()` brings a length
-/// measured there back.
+/// A few points (a triangle, the quad of an edge) scaled together by the power of two that
+/// brings their largest coordinate into [1, 2): the frame in which their shape is measured.
+/// Edges there are at least about 2^-52 long (coordinates cannot resolve less), so every
+/// square and product of edge vectors stays a normal number, whatever the magnitude of the
+/// coordinates (near 1e308, subnormal, or a mesh mixing both). Where the unscaled
+/// computation neither overflows nor underflows, the scaled one gives bit-identical angles
+/// and ratios; `scale.length()` brings a length back.
 template <std::size_t N>
-struct LocalFrame {
-    std::array<Vec3, N> v{};
+struct UnitPoints {
+    std::array<Point3, N> p{};
     ExactScale scale;
 };
 
 template <std::size_t N>
-[[nodiscard]] LocalFrame<N> local_frame(const Point3& origin, const std::array<Point3, N>& points) {
-    // Coordinates near overflow are halved a few times first, so that differences stay finite.
-    double big = std::fmax(std::fabs(origin.x), std::fmax(std::fabs(origin.y), std::fabs(origin.z)));
-    for (const Point3& p : points)
-        big = std::fmax(big, std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))));
-    const ExactScale pre(big > 0x1p1000 ? -8 : 0);
-    LocalFrame<N> f;
-    double m = 0;
-    for (std::size_t i = 0; i < N; ++i) {
-        f.v[i] = pre.apply(points[i]) - pre.apply(origin);
-        m = std::fmax(m, std::fmax(std::fabs(f.v[i].x), std::fmax(std::fabs(f.v[i].y), std::fabs(f.v[i].z))));
-    }
-    if (!(m > 0) || !std::isfinite(m)) {
-        f.scale = pre;
-        return f;
-    }
-    const int e = -std::ilogb(m);
-    const ExactScale s(e);
-    for (Vec3& x : f.v) x = s.apply(x);
-    f.scale = ExactScale(pre.exponent() + e);
-    return f;
+[[nodiscard]] UnitPoints<N> to_unit(const std::array<Point3, N>& points) {
+    UnitPoints<N> u;
+    u.scale = ExactScale::to_unit(points);
+    for (std::size_t i = 0; i < N; ++i) u.p[i] = u.scale.apply(points[i]);
+    return u;
 }
 
 }  // namespace dynmesh

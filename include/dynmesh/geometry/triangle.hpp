@@ -2,7 +2,10 @@
 /// \file Floating-point measures of triangles and edges (angles, circumcentres, normals).
 ///
 /// These are measurements, not decisions; decisions that must be exact go through
-/// predicates.hpp.
+/// predicates.hpp. The angle and ratio measures, the circumcentre and the circumradius are
+/// computed on their points scaled by an exact power of two (scaled_frame.hpp): correct
+/// near the double limits (coordinates near 1e308 or subnormal), and bit-identical to the
+/// plain computation everywhere else.
 
 #include <numbers>
 
@@ -17,9 +20,7 @@ inline constexpr double deg_to_rad(double d) { return d * (kPi / 180.0); }
 /// Angle in radians between vectors u and v, in [0, pi]; 0 when either is zero.
 double angle_between(const Vec3& u, const Vec3& v);
 /// The angle abc at b, in radians.
-inline double angle_at(const Point3& a, const Point3& b, const Point3& c) {
-    return angle_between(a - b, c - b);
-}
+double angle_at(const Point3& a, const Point3& b, const Point3& c);
 /// Cosine of the angle abc at b; 1 when a or c coincides with b.
 double cos_angle_at(const Point3& a, const Point3& b, const Point3& c);
 /// Non-normalised normal (b - a) x (c - a); its length is twice the area.

@@ -269,6 +269,14 @@ public:
     /// Removes deleted elements and compacts all arrays and properties. Handles held by
     /// callers are invalidated; Property objects stay valid.
     void garbage_collection();
+    /// Renumbers every element: new vertex i is old vertex vertex_order[i], new edge i old
+    /// edge edge_order[i] (its two halfedges keep their order), new face i old face
+    /// face_order[i]. Connectivity, positions and properties move with their elements, so the
+    /// mesh is the same up to numbering; permuting back with the inverse orders restores it
+    /// bit for bit. Handles held by callers are invalidated.
+    /// \pre no garbage. \throw InvalidInput when an order is not a permutation of its range.
+    void permute(std::span<const std::uint32_t> vertex_order, std::span<const std::uint32_t> edge_order,
+                 std::span<const std::uint32_t> face_order);
 
     // ---- properties ----------------------------------------------------------------------
     template <class T>
@@ -330,6 +338,10 @@ private:
     void set_halfedge(Face f, Halfedge h) { fhalfedge_[f.idx()] = h.idx(); }
     /// Makes halfedge(v) the outgoing boundary halfedge if v has one.
     void adjust_outgoing_halfedge(Vertex v);
+    /// Keeps the listed elements (new index i = old index keep[i]) and drops the others:
+    /// compaction (garbage_collection) or renumbering (permute).
+    void reindex(std::span<const std::uint32_t> vkeep, std::span<const std::uint32_t> ekeep,
+                 std::span<const std::uint32_t> fkeep);
     /// Puts `by` into the cycle (face or boundary loop) of `old`, in its place.
     void replace_in_cycle(Halfedge old, Halfedge by);
     void delete_vertex(Vertex v);
