@@ -39,13 +39,16 @@ public:
         cell_ = cell;
         inv_ = 1.0 / cell;
         cells_.clear();
+        std::fill(occupied_.begin(), occupied_.end(), 0);
         size_ = 0;
     }
     [[nodiscard]] double cell() const { return cell_; }
     [[nodiscard]] std::size_t size() const { return size_; }
 
     void insert(std::uint32_t id, const Point3& p) {
-        cells_[key(p)].push_back(id);
+        const Key k = key(p);
+        cells_[k].push_back(id);
+        mark(k);
         ++size_;
     }
     /// Removes id, which must have been inserted at p. Returns false when it is not there.
@@ -79,7 +82,9 @@ public:
         for (std::int64_t x = x0; x <= x1; ++x)
             for (std::int64_t y = y0; y <= y1; ++y)
                 for (std::int64_t z = z0; z <= z1; ++z) {
-                    auto it = cells_.find(pack(x, y, z));
+                    const Key k = pack(x, y, z);
+                    if (!maybe_occupied(k)) continue;  // most cells of a query are empty
+                    auto it = cells_.find(k);
                     if (it == cells_.end()) continue;
                     for (std::uint32_t id : it->second) f(id);
                 }
@@ -130,8 +135,18 @@ private:
         return n > static_cast<std::int64_t>(cells_.size()) + 64;
     }
 
+    /// A one-hash Bloom filter of the occupied cells: a clear bit proves a cell empty without a
+    /// hash-map lookup. Erasing leaves bits set (they only cost a lookup); reset() clears them.
+    static constexpr std::size_t kFilterBits = std::size_t{1} << 15;
+    [[nodiscard]] static std::size_t filter_bit(Key k) { return hash_cell(std::int64_t(k), 0, 0) & (kFilterBits - 1); }
+    void mark(Key k) { occupied_[filter_bit(k) >> 6] |= std::uint64_t{1} << (filter_bit(k) & 63); }
+    [[nodiscard]] bool maybe_occupied(Key k) const {
+        return (occupied_[filter_bit(k) >> 6] >> (filter_bit(k) & 63)) & 1u;
+    }
+
     double cell_ = 1, inv_ = 1;
     std::unordered_map<Key, std::vector<std::uint32_t>> cells_;
+    std::vector<std::uint64_t> occupied_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);
     std::size_t size_ = 0;
 };
 
