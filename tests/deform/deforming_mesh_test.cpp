@@ -334,11 +334,14 @@ TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {
     params.h0 = 0.09;
     Sphere sphere(Point3{0, 0, 0}, 1.0);
     DeformingMesh dm(P0, params, {.surface = &sphere});
-    // Push one vertex deep through the surface: its triangles turn inside out.
-    const Vertex v = *dm.mesh().vertices().begin();
-    const SampleId id = dm.sample_of(v);
+    // Move one vertex (that of the smallest sample id) along the sphere past a neighbour
+    // (to its mirror image there): the triangles it drags over turn inside out.
+    SampleId id = kNoSample;
+    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    const Vertex v = dm.vertex_of(id);
+    const SampleId w = dm.sample_of(dm.mesh().to_vertex(*dm.mesh().outgoing_halfedges(v).begin()));
     auto pos = P0;
-    pos[id] = P0[id] * 0.5;
+    pos[id] = normalized(2.0 * P0[w] - P0[id]);
     const auto st = dm.advance(1, pos);
     bool inverted = false;
     for (const auto& x : st.violations) inverted |= x.kind == Violation::NormalInverted;

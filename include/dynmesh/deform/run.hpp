@@ -46,7 +46,8 @@ struct DeformRunOptions {
     /// and T (for counting changes over long runs).
     int measure_every = 1;
     MeasureOptions measure{.hausdorff = true, .self_intersections = true, .sampling_radius = true};
-    /// Run DeformingMesh::check_invariants() after every update (reported, never fatal).
+    /// Run DeformingMesh::check_invariants() after every update (reported, never fatal; see
+    /// check_failures()).
     bool check_invariants = false;
     std::function<void(const DeformFrame&)> on_frame;
 };
@@ -85,11 +86,57 @@ struct DeformRunReport {
     std::size_t invariant_failures = 0;  ///< updates after which check_invariants() failed
     std::vector<std::string> first_invariant_failures;
     /// Diametric balls holding a vertex after an update (with check_invariants): largest
-    /// count after one update, and the sum over updates (spec §9 P9; soft).
+    /// count after one update, and the sum over updates (spec §9 P9).
     std::size_t nonempty_balls_max = 0, nonempty_balls_total = 0;
+    std::size_t updates_with_nonempty_balls = 0;
+    /// "t=T: the diametric ball of triangle (a, b, c) holds ..." for the first 10 such updates.
+    std::vector<std::string> first_nonempty_balls;
     std::map<std::string, std::size_t> violations;  ///< by kind
+    /// The first kViolationExamples records of every kind (t = 0: initialisation), by time.
+    std::vector<ViolationRecord> violation_examples;
+    /// Rebuilds installed, and rebuilds undone because their result had another topology
+    /// than Tri(0) or the reconstruction failed (Violation::TopologyRollback).
+    std::size_t rebuilds = 0, rollbacks = 0;
+    std::size_t flip_refusals = 0;  ///< flips refused by the circumradius guard (spec §9 P9)
+    /// First time unit with a self-intersection / an inverted triangle (-1: none).
+    int first_self_intersection_t = -1, first_inverted_t = -1;
+    /// Tri(0): vertices and Euler characteristic (kept by every update).
+    std::size_t init_vertices = 0;
+    long long euler = 0;
+    /// Events to show even without --check, one line each with its time unit: every update
+    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger) and every
+    /// rollback; at most kMaxWarnings lines, then one line counting the rest.
+    std::vector<std::string> warnings;
     std::vector<DeformLogRow> log;
 };
+
+inline constexpr std::size_t kViolationExamples = 5;
+inline constexpr std::size_t kMaxWarnings = 100;
+
+/// How much `dynmesh deform --check` demands.
+enum class CheckLevel {
+    Off,
+    /// `--check`: the maintained mesh is right at every update: the invariants of
+    /// check_invariants() (needs DeformRunOptions::check_invariants), including empty
+    /// diametric balls; no self-intersection and no inverted triangle at any measured time
+    /// unit; no rebuild rolled back.
+    Invariants,
+    /// `--check=strict`: also none of the monitors and diagnostics the report lists
+    /// (violations of any kind: step_too_short, displacement_exceeds_lambda,
+    /// edge_angle_below_90, normal_inverted, circumradius_growth, refine_cap_hit,
+    /// deletion_cap_hit, add_vertex_case, far_sample, add_folded, remove_failed,
+    /// non_empty_ball, rebuild, rollback, coarsened): the run stayed inside the paper's model.
+    Strict
+};
+[[nodiscard]] std::string_view to_string(CheckLevel level);
+/// "off", "invariants" (or "on", what a bare --check means) or "strict". 	hrow InvalidInput.
+[[nodiscard]] CheckLevel parse_check_level(std::string_view name);
+
+/// Every reason the run fails `level`, one line each naming the time unit ("t=12: ...") and
+/// the place (triangle or sample ids) where the report has it; empty when it passes (always
+/// for CheckLevel::Off). A kind with more records than the report keeps ends with a line
+/// counting the rest.
+[[nodiscard]] std::vector<std::string> check_failures(const DeformRunReport& report, CheckLevel level);
 
 /// Runs the scenario from t = 0 to its horizon.
 DeformRunReport run_deform(const Scenario& scenario, const DeformRunOptions& options = {});
