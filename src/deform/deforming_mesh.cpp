@@ -319,8 +319,9 @@ struct DeformingMesh::Impl {
         for (Edge x : mesh.edges()) e.push_back(x);
         return e;
     }
-    /// The global flip of §4.3, then the check that every diametric ball is empty of vertices
-    /// (a grid over the vertices, cell R); a ball that still holds one is reported.
+    /// The global flip of §4.3 (its cap, when hit, is reported at once; the emptiness of the
+    /// balls is checked by report_balls() on the mesh an update or the initialisation ends
+    /// with).
     void global_flip() {
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
@@ -329,14 +330,21 @@ struct DeformingMesh::Impl {
         if (r.flips > 0) touch();
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
+        if (!r.converged)
+            violation(Violation::NonEmptyBall, "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
+    }
+
+    /// §4.3: every diametric ball must be empty of vertices after the global flips (a grid
+    /// over the vertices); reports the balls that still hold one.
+    void report_balls(const char* when) {
         const double R = max_circumradius();
-        const BallScan b = R > 0 ? scan_balls(vertex_grid(R)) : BallScan{};
-        if (!r.converged || b.count > 0)
-            violation(Violation::NonEmptyBall,
-                      (r.converged ? "" : "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips; ") +
-                          std::to_string(b.count) + " diametric balls hold a vertex after it" +
-                          (b.count > 0 ? ", e.g. that of triangle " + face_str(b.first) + " holds " + idstr(b.inside) : "") +
-                          " (" + std::to_string(r.not_improving) + " flips refused by the circumradius guard)");
+        if (!(R > 0)) return;
+        const BallScan b = scan_balls(vertex_grid(2 * R));
+        if (b.count == 0) return;
+        violation(Violation::NonEmptyBall, std::to_string(b.count) + " diametric balls hold a vertex " + when +
+                                               ", e.g. that of triangle " + face_str(b.first) + " holds " +
+                                               idstr(b.inside) + " (" + std::to_string(cur.flip_refusals) +
+                                               " flips refused by the circumradius guard)");
     }
 
     /// Triangles whose diametric ball holds a vertex strictly inside (exact predicate).
@@ -346,22 +354,24 @@ struct DeformingMesh::Impl {
         std::uint32_t inside = kNoSlot;  ///< a vertex (slot) in its ball
         std::size_t first_hits = 0;      ///< vertices in its ball
     };
-    /// `grid` holds every vertex (slots), with cell >= the largest circumradius.
+    /// `grid` holds every vertex (slots); with a cell of at least twice the largest
+    /// circumradius, the cube around a ball meets at most 2 x 2 x 2 cells.
     [[nodiscard]] BallScan scan_balls(const PointGrid& grid) const {
         BallScan b;
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
             const Point3 &a = mesh.position(vs[0]), &bb = mesh.position(vs[1]), &c = mesh.position(vs[2]);
-            if (collinear(a, bb, c)) continue;
             const Point3 cc = circumcenter(a, bb, c);
-            const double rad = distance(cc, a);
+            if (!is_finite(cc)) continue;  // collinear
+            const double r2 = sqnorm(cc - a);
+            const double r2s = r2 * (1 + 2e-9);
             std::size_t hits = 0;
             std::uint32_t any = kNoSlot;
-            grid.for_each_candidate(cc, rad, [&](std::uint32_t w) {
+            grid.for_each_candidate(cc, std::sqrt(r2), [&](std::uint32_t w) {
+                if (sqnorm(pos[w] - cc) > r2s) return;
                 const Vertex x = vert_of[w];
                 if (x == vs[0] || x == vs[1] || x == vs[2]) return;
-                if (distance(pos[w], cc) > rad * (1 + 1e-9)) return;
-                if (in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive) {
+                if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive) {
                     ++hits;
                     if (any == kNoSlot || w < any) any = w;
                 }
@@ -931,6 +941,7 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
         if (I.cur.insertions == before) break;
     }
     if (params.init_refine) I.spacing_repair();
+    I.report_balls("after the initialisation's global flips");
     I.init.init_flips = I.cur.flips;
     I.init.init_insertions += I.cur.insertions;
     I.init.init_removals = I.cur.removals;
@@ -944,6 +955,15 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
     I.init.faces = I.mesh.n_faces();
     I.init.R0 = I.R_last;
     I.init.next_step = I.next;
+    {   // spec §4.1: check the invariants at 0 and report any violation
+        InvariantOptions io;
+        io.self_intersections = false;
+        io.empty_balls_soft = true;
+        const InvariantReport inv = check_invariants(io);
+        I.init.invariant_failures = inv.failures;
+        I.init.nonempty_balls = inv.nonempty_balls;
+        I.init.first_nonempty_ball = inv.first_nonempty_ball;
+    }
     I.init.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     I.pending_violations.clear();
 }
@@ -1044,6 +1064,7 @@ UpdateReport DeformingMesh::update() {
         I.rebuild();
         I.refine_vert();
     }
+    I.report_balls("after the update's global flips");
     I.schedule();
     I.finish_update();
     I.emergency_requested = false;

@@ -222,6 +222,12 @@ struct InitReport {
     std::size_t init_removals = 0;  ///< vertices the spacing repair removed at t = 0
     long long euler = 0;            ///< Euler characteristic of Tri(0), kept by every update
     std::size_t components = 0;     ///< connected components of Tri(0)
+    /// check_invariants() at t = 0 (without the self-intersection test; spec §4.1): its
+    /// failures other than non-empty diametric balls (empty when the invariants hold), and
+    /// those balls apart.
+    std::vector<std::string> invariant_failures;
+    std::size_t nonempty_balls = 0;
+    std::string first_nonempty_ball;
     /// Samples made vertices by running RefineVert to a fixed point at t = 0 (not in the
     /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps),
     /// on the reference mesh's vertex set or by Add.

@@ -83,7 +83,9 @@ struct DeformRunReport {
     double worst_min_edge_angle_deg = 180;
     std::size_t self_intersections = 0;  ///< summed over all measured time units
     std::size_t inverted = 0;            ///< summed over all measured time units
-    std::size_t invariant_failures = 0;  ///< updates after which check_invariants() failed
+    /// Updates after which check_invariants() failed (t = 0 counts as one, from
+    /// InitReport::invariant_failures).
+    std::size_t invariant_failures = 0;
     std::vector<std::string> first_invariant_failures;
     /// Diametric balls holding a vertex after an update (with check_invariants): largest
     /// count after one update, and the sum over updates (spec §9 P9).
@@ -116,16 +118,20 @@ inline constexpr std::size_t kMaxWarnings = 100;
 /// How much `dynmesh deform --check` demands.
 enum class CheckLevel {
     Off,
-    /// `--check`: the maintained mesh is right at every update: the invariants of
-    /// check_invariants() (needs DeformRunOptions::check_invariants), including empty
-    /// diametric balls; no self-intersection and no inverted triangle at any measured time
-    /// unit; no rebuild rolled back.
+    /// `--check`: the maintained mesh is a valid mesh of Sigma at every update: the invariants
+    /// of check_invariants() (needs DeformRunOptions::check_invariants; t = 0 included):
+    /// closed oriented manifold with Tri(0)'s Euler characteristic and components, dormant
+    /// lists, radius-edge <= 3, spacing >= R/3, dormant points within 5R/4; no
+    /// self-intersection and no inverted triangle at any measured time unit; no rebuild
+    /// rolled back (Violation::TopologyRollback).
     Invariants,
-    /// `--check=strict`: also none of the monitors and diagnostics the report lists
-    /// (violations of any kind: step_too_short, displacement_exceeds_lambda,
-    /// edge_angle_below_90, normal_inverted, circumradius_growth, refine_cap_hit,
-    /// deletion_cap_hit, add_vertex_case, far_sample, add_folded, remove_failed,
-    /// non_empty_ball, rebuild, rollback, coarsened): the run stayed inside the paper's model.
+    /// `--check=strict`: also the paper's Delaunay property and model: no diametric ball
+    /// holding a vertex after any update (t = 0 included), and none of the monitors and
+    /// diagnostics the report lists (violations of any kind: step_too_short,
+    /// displacement_exceeds_lambda, edge_angle_below_90, normal_inverted,
+    /// circumradius_growth, refine_cap_hit, deletion_cap_hit, add_vertex_case, far_sample,
+    /// add_folded, remove_failed, non_empty_ball, rebuild, rollback, coarsened,
+    /// init_fallback).
     Strict
 };
 [[nodiscard]] std::string_view to_string(CheckLevel level);
