@@ -708,6 +708,119 @@ struct DeformingMesh::Impl {
         violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
     }
 
+    /// Step 1 of §4.1: h0 given, or estimated from the surface, the reference, the initial
+    /// mesh or (last) an advancing-front reconstruction. `positions` in SampleId order.
+    double initial_h0(std::span<const Point3> positions, const InitialSurface& initial) {
+        double h0 = 0;
+        if (params.h0) {
+            h0 = *params.h0;
+        } else if (initial.surface != nullptr) {
+            // A seed unrelated to the samples (which may come from the same generator).
+            const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed ^ 0x9E3779B97F4A7C15ULL);
+            h0 = covering_radius(probes, pos);
+            init.h0_estimated = true;
+        } else if (initial.reference != nullptr) {
+            h0 = covering_radius(reference_probes(*initial.reference), pos);
+            init.h0_estimated = true;
+        } else if (initial.mesh != nullptr) {
+            h0 = largest_circumradius(*initial.mesh);
+            init.h0_estimated = true;
+        } else {
+            h0 = largest_circumradius(reconstruct_advancing_front(positions));
+            init.h0_estimated = true;
+        }
+        if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
+        return h0;
+    }
+
+    /// Steps 2-4 of §4.1: Vert(0) (the greedy h0-net in slot order, or the caller's mesh) and
+    /// Tri(0) (the caller's mesh, on the reference, the restricted Delaunay triangulation on
+    /// the surface, or the advancing front), installed with every other sample dormant.
+    void initial_triangulation(std::span<const Point3> positions, double h0, const InitialSurface& initial) {
+        if (initial.mesh != nullptr) {
+            const SurfaceMesh& m = *initial.mesh;
+            if (initial.vertex_samples.size() != m.vertices_size())
+                throw InvalidInput("deform: the initial mesh has " + std::to_string(m.vertices_size()) +
+                                   " vertices but " + std::to_string(initial.vertex_samples.size()) + " sample ids");
+            std::vector<char> seen(positions.size(), 0);
+            for (SampleId s : initial.vertex_samples) {
+                if (s >= positions.size()) throw InvalidInput("deform: initial mesh vertex names unknown " + id_str(s));
+                if (seen[s]) throw InvalidInput("deform: initial mesh uses " + id_str(s) + " twice");
+                seen[s] = 1;
+            }
+            require_valid_mesh(m, "deform: the initial mesh", MeshCheckOptions{.require_closed = true});
+            SurfaceMesh copy = m;
+            std::vector<SampleId> vs;
+            for (SampleId s : initial.vertex_samples) vs.push_back(slot_of[s]);
+            for (Vertex v : copy.vertices()) copy.position(v) = pos[vs[v.idx()]];
+            init.net = vs.size();
+            init.tri0 = "given";
+            install_mesh(std::move(copy), vs);
+        } else {
+            // The greedy h0-net, scanning the samples in slot order.
+            std::vector<SampleId> vs;
+            PointGrid g(h0);
+            for (SampleId s = 0; s < pos.size(); ++s) {
+                bool close = false;
+                g.for_each_candidate(pos[s], h0, [&](std::uint32_t w) {
+                    if (!close && distance(pos[w], pos[s]) < h0) close = true;
+                });
+                if (!close) {
+                    g.insert(s, pos[s]);
+                    vs.push_back(s);
+                }
+            }
+            init.net = vs.size();
+            if (vs.size() < 4)
+                throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(vs.size()) +
+                                   " samples are at least h0 = " + std::to_string(h0) + " apart");
+            SurfaceMesh m;
+            std::vector<SampleId> mapped;
+            if (initial.reference != nullptr) {
+                ReferenceMesh r;
+                try {
+                    r = initial_mesh_on_reference(pos, vs, *initial.reference, {.refine = params.init_refine});
+                } catch (const InvalidInput& e) {
+                    throw InvalidInput(std::string("deform: cannot build Tri(0) on the reference mesh (") + e.what() + ")");
+                }
+                m = std::move(r.mesh);
+                mapped.assign(r.vertex_sample.begin(), r.vertex_sample.end());
+                init.tri0 = std::string(to_string(r.path));
+                init.net_added = r.added;
+                init.init_insertions = r.promoted;
+                if (!r.fallback_reason.empty())
+                    violation(Violation::InitFallback, "Tri(0) by decimating the reference: " + r.fallback_reason);
+            } else {
+                std::vector<Point3> pts;
+                for (SampleId s : vs) pts.push_back(pos[s]);
+                std::vector<std::uint32_t> used;
+                try {
+                    init.tri0 = initial.surface != nullptr ? "restricted_delaunay_surface" : "advancing_front";
+                    if (initial.surface != nullptr) {
+                        auto r = restricted_delaunay_with_report(pts, *initial.surface);
+                        m = std::move(r.mesh);
+                        used = std::move(r.report.vertex_sample);
+                    } else {
+                        auto r = reconstruct_advancing_front_with_report(pts);
+                        m = std::move(r.mesh);
+                        used = std::move(r.report.vertex_sample);
+                    }
+                } catch (const InvalidInput& e) {
+                    throw InvalidInput(std::string("deform: the sample set is too sparse to mesh (") + e.what() +
+                                       (initial.surface == nullptr
+                                            ? "); with a mesh of the surface, pass it as InitialSurface::reference"
+                                            : ")"));
+                }
+                if (used.size() != pts.size())
+                    throw InvalidInput("deform: the sample set is too sparse to mesh: " +
+                                       std::to_string(pts.size() - used.size()) + " of " + std::to_string(pts.size()) +
+                                       " chosen vertices are in no triangle of the initial mesh");
+                for (std::uint32_t i : used) mapped.push_back(vs[i]);
+            }
+            install_mesh(std::move(m), mapped);
+        }
+    }
+
     /// Makes `m` (vertex i = sample vs[i]) the mesh; every other live sample becomes dormant
     /// at its nearest vertex.
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
@@ -818,111 +931,9 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
                                    std::to_string(order[i]) + " coincide");
     }
 
-    // 1. h0
-    double h0 = 0;
-    if (params.h0) {
-        h0 = *params.h0;
-    } else if (initial.surface != nullptr) {
-        // A seed unrelated to the samples (which may come from the same generator).
-        const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed ^ 0x9E3779B97F4A7C15ULL);
-        h0 = covering_radius(probes, I.pos);
-        I.init.h0_estimated = true;
-    } else if (initial.reference != nullptr) {
-        h0 = covering_radius(reference_probes(*initial.reference), I.pos);
-        I.init.h0_estimated = true;
-    } else if (initial.mesh != nullptr) {
-        h0 = largest_circumradius(*initial.mesh);
-        I.init.h0_estimated = true;
-    } else {
-        h0 = largest_circumradius(reconstruct_advancing_front(positions));
-        I.init.h0_estimated = true;
-    }
-    if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
-    I.init.h0 = h0;
-
-    // 2. Vert(0), and 4. Tri(0)
-    if (initial.mesh != nullptr) {
-        const SurfaceMesh& m = *initial.mesh;
-        if (initial.vertex_samples.size() != m.vertices_size())
-            throw InvalidInput("deform: the initial mesh has " + std::to_string(m.vertices_size()) +
-                               " vertices but " + std::to_string(initial.vertex_samples.size()) + " sample ids");
-        std::vector<char> seen(positions.size(), 0);
-        for (SampleId s : initial.vertex_samples) {
-            if (s >= positions.size()) throw InvalidInput("deform: initial mesh vertex names unknown " + id_str(s));
-            if (seen[s]) throw InvalidInput("deform: initial mesh uses " + id_str(s) + " twice");
-            seen[s] = 1;
-        }
-        require_valid_mesh(m, "deform: the initial mesh", MeshCheckOptions{.require_closed = true});
-        SurfaceMesh copy = m;
-        std::vector<SampleId> vs;
-        for (SampleId s : initial.vertex_samples) vs.push_back(I.slot_of[s]);
-        for (Vertex v : copy.vertices()) copy.position(v) = I.pos[vs[v.idx()]];
-        I.init.net = vs.size();
-        I.init.tri0 = "given";
-        I.install_mesh(std::move(copy), vs);
-    } else {
-        // The greedy h0-net, scanning the samples in slot order.
-        std::vector<SampleId> vs;
-        PointGrid g(h0);
-        for (SampleId s = 0; s < I.pos.size(); ++s) {
-            bool close = false;
-            g.for_each_candidate(I.pos[s], h0, [&](std::uint32_t w) {
-                if (!close && distance(I.pos[w], I.pos[s]) < h0) close = true;
-            });
-            if (!close) {
-                g.insert(s, I.pos[s]);
-                vs.push_back(s);
-            }
-        }
-        I.init.net = vs.size();
-        if (vs.size() < 4)
-            throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(vs.size()) +
-                               " samples are at least h0 = " + std::to_string(h0) + " apart");
-        SurfaceMesh m;
-        std::vector<SampleId> mapped;
-        if (initial.reference != nullptr) {
-            ReferenceMesh r;
-            try {
-                r = initial_mesh_on_reference(I.pos, vs, *initial.reference, {.refine = params.init_refine});
-            } catch (const InvalidInput& e) {
-                throw InvalidInput(std::string("deform: cannot build Tri(0) on the reference mesh (") + e.what() + ")");
-            }
-            m = std::move(r.mesh);
-            mapped.assign(r.vertex_sample.begin(), r.vertex_sample.end());
-            I.init.tri0 = std::string(to_string(r.path));
-            I.init.net_added = r.added;
-            I.init.init_insertions = r.promoted;
-            if (!r.fallback_reason.empty())
-                I.violation(Violation::InitFallback, "Tri(0) by decimating the reference: " + r.fallback_reason);
-        } else {
-            std::vector<Point3> pts;
-            for (SampleId s : vs) pts.push_back(I.pos[s]);
-            std::vector<std::uint32_t> used;
-            try {
-                I.init.tri0 = initial.surface != nullptr ? "restricted_delaunay_surface" : "advancing_front";
-                if (initial.surface != nullptr) {
-                    auto r = restricted_delaunay_with_report(pts, *initial.surface);
-                    m = std::move(r.mesh);
-                    used = std::move(r.report.vertex_sample);
-                } else {
-                    auto r = reconstruct_advancing_front_with_report(pts);
-                    m = std::move(r.mesh);
-                    used = std::move(r.report.vertex_sample);
-                }
-            } catch (const InvalidInput& e) {
-                throw InvalidInput(std::string("deform: the sample set is too sparse to mesh (") + e.what() +
-                                   (initial.surface == nullptr
-                                        ? "); with a mesh of the surface, pass it as InitialSurface::reference"
-                                        : ")"));
-            }
-            if (used.size() != pts.size())
-                throw InvalidInput("deform: the sample set is too sparse to mesh: " +
-                                   std::to_string(pts.size() - used.size()) + " of " + std::to_string(pts.size()) +
-                                   " chosen vertices are in no triangle of the initial mesh");
-            for (std::uint32_t i : used) mapped.push_back(vs[i]);
-        }
-        I.install_mesh(std::move(m), mapped);
-    }
+    // 1-4 of §4.1: h0, Vert(0), dormant lists, Tri(0)
+    I.init.h0 = I.initial_h0(positions, initial);
+    I.initial_triangulation(positions, I.init.h0, initial);
     {
         const auto rep = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
         if (!rep.ok())

@@ -214,12 +214,13 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     for (const auto& v : dm.violations()) {
         const std::string kind(to_string(v.kind));
         if (rep.violations[kind]++ < kViolationExamples) rep.violation_examples.push_back(v);
-        if (v.kind == Violation::Coarsened || v.kind == Violation::TopologyRollback) {
+        if (v.kind == Violation::Coarsened || v.kind == Violation::TopologyRollback ||
+            v.kind == Violation::InitFallback) {
             if (warned++ < kMaxWarnings) rep.warnings.push_back(record_line(v));
         }
     }
     if (warned > kMaxWarnings)
-        rep.warnings.push_back(std::to_string(warned - kMaxWarnings) + " more warnings (coarsened or rollback)");
+        rep.warnings.push_back(std::to_string(warned - kMaxWarnings) + " more warnings (coarsened, rollback)");
     rep.seconds_total = std::chrono::duration<double>(Clock::now() - t_start).count();
     return rep;
 }

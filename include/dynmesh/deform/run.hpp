@@ -106,8 +106,9 @@ struct DeformRunReport {
     std::size_t init_vertices = 0;
     long long euler = 0;
     /// Events to show even without --check, one line each with its time unit: every update
-    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger) and every
-    /// rollback; at most kMaxWarnings lines, then one line counting the rest.
+    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger), every
+    /// rollback, and a Tri(0) built by decimating the input mesh (t = 0); at most
+    /// kMaxWarnings lines, then one line counting the rest.
     std::vector<std::string> warnings;
     std::vector<DeformLogRow> log;
 };
