@@ -337,6 +337,7 @@ struct DeformingMesh::Impl {
     /// §4.3: every diametric ball must be empty of vertices after the global flips (a grid
     /// over the vertices); reports the balls that still hold one.
     void report_balls(const char* when) {
+        if (!params.verify_balls) return;
         const double R = max_circumradius();
         if (!(R > 0)) return;
         const BallScan b = scan_balls(vertex_grid(2 * R));

@@ -91,6 +91,11 @@ TEST(DeformMonitors, GlobalFlipReportsTheBallsItCannotEmpty) {
     EXPECT_NE(v.detail.find(std::to_string(inv.nonempty_balls) + " diametric balls"), std::string::npos) << v.detail;
     EXPECT_NE(v.detail.find("triangle ("), std::string::npos) << v.detail;
     EXPECT_EQ(dm.init_report().nonempty_balls, inv.nonempty_balls);
+    // The check can be turned off (only a flip loop at its cap is then reported).
+    params.verify_balls = false;
+    const DeformingMesh quiet(pos, params, init);
+    EXPECT_EQ(count_kind(quiet.violations(), "non_empty_ball"), 0u);
+    EXPECT_EQ(quiet.init_report().nonempty_balls, inv.nonempty_balls);  // the t = 0 check still counts
 }
 
 TEST(DeformMonitors, DeletingACapCoarsensTheMeshAndSaysSo) {

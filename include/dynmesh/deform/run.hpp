@@ -87,8 +87,8 @@ struct DeformRunReport {
     /// InitReport::invariant_failures).
     std::size_t invariant_failures = 0;
     std::vector<std::string> first_invariant_failures;
-    /// Diametric balls holding a vertex after an update (with check_invariants): largest
-    /// count after one update, and the sum over updates (spec §9 P9).
+    /// Diametric balls holding a vertex after an update (with check_invariants; t = 0 counts
+    /// as one): largest count after one update, and the sum over updates (spec §9 P9).
     std::size_t nonempty_balls_max = 0, nonempty_balls_total = 0;
     std::size_t updates_with_nonempty_balls = 0;
     /// "t=T: the diametric ball of triangle (a, b, c) holds ..." for the first 10 such updates.
