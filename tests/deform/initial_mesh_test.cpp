@@ -66,9 +66,10 @@ TEST_P(InitOnMeshFile, HasTheInputTopologyAndIsChecked) {
     EXPECT_EQ(inv.ok, ir.invariant_failures.empty() && ir.nonempty_balls == 0)
         << (inv.failures.empty() ? "" : inv.failures.front());
     EXPECT_EQ(inv.nonempty_balls, ir.nonempty_balls);
-    // Parts thinner than a third of the global R (the elephant's trunk tip, the armadillo's
-    // wrinkles, igea's ear) need vertices closer than R/3 or leave balls that no flip can
-    // empty: outside the paper's global-reach model, and reported above, not silent.
+    // Features smaller than a third of the global R (a thin part of the elephant, the
+    // armadillo's scan wrinkles, a few places of igea) need vertices closer than R/3 or leave
+    // balls that no flip can empty: outside the paper's global-reach model, and reported
+    // above, not silent (docs/deform/RESULTS.md, section C).
     const bool outside_model = file == "elephant.off" || file == "armadillo.off" || file == "igea.ply";
     if (!outside_model) {
         EXPECT_TRUE(inv.ok) << file << ": " << (inv.failures.empty() ? "" : inv.failures.front());
