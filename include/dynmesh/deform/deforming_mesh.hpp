@@ -124,7 +124,9 @@ enum class Violation {
     FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
     AddFolded,                  ///< Add would fold the mesh (sparse samples); undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation
-    NonEmptyBall,               ///< a diametric ball still holds a vertex after a global flip
+    /// A diametric ball holds a vertex once an update's (or the initialisation's) global flips
+    /// are done (DeformParams::verify_balls), or a flip loop stopped at its cap.
+    NonEmptyBall,
     Rebuild,                    ///< the mesh was rebuilt from scratch to recover
     /// A rebuild was undone: its result was not a closed manifold with the Euler
     /// characteristic and components of Tri(0) (or the reconstruction failed); the mesh from
