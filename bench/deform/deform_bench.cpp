@@ -4,6 +4,12 @@
 /// mesh from the same samples at the same positions with CGAL's advancing-front
 /// reconstruction in the same run. Prints seconds per update, ns per sample (flat = linear
 /// time) and the rebuild / update ratio.
+///
+/// The caller's numbering: BM_DeformUpdate numbers the samples randomly (as sample_uniform
+/// draws them), BM_DeformUpdateSorted gives the same samples numbered along a Morton curve;
+/// the summary prints the random / sorted ratio of the update time (1 when the numbering
+/// does not matter). The timed update includes advance() (every cost the caller pays at a
+/// step: the motion of all samples, then MeshUpdate).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -13,6 +19,7 @@
 #include <memory>
 
 #include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/geometry/spatial_sort.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/shapes/analytic.hpp"
 #include "recording_reporter.hpp"
@@ -42,13 +49,15 @@ struct Fixture {
     double init_seconds = 0;
 };
 
-Fixture& fixture(std::size_t n) {
-    static std::map<std::size_t, Fixture> cache;
-    auto it = cache.find(n);
+/// `sorted`: the samples renumbered along a Morton curve (same points).
+Fixture& fixture(std::size_t n, bool sorted = false) {
+    static std::map<std::pair<std::size_t, bool>, Fixture> cache;
+    auto it = cache.find({n, sorted});
     if (it != cache.end()) return it->second;
     Fixture f;
     const Sphere sphere(Point3{0, 0, 0}, 1.0);
     f.p0 = sphere.sample_uniform(n, 1);
+    if (sorted) spatial_sort(f.p0);
     DeformParams params;
     params.lambda = f.motion.lambda * 1.001;
     params.h0_probes = std::max<std::size_t>(n, 100000);
@@ -62,22 +71,27 @@ Fixture& fixture(std::size_t n) {
         f.dm->advance(t, f.pos);
         f.dm->update();
     }
-    return cache.emplace(n, std::move(f)).first->second;
+    return cache.emplace(std::make_pair(n, sorted), std::move(f)).first->second;
 }
 
-/// One iteration = move the samples to the next scheduled step (not timed), then update.
-void BM_DeformUpdate(benchmark::State& state) {
-    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+/// One iteration = compute the sample positions at the next scheduled step (not timed), then
+/// advance() and update() (timed).
+void update_bench(benchmark::State& state, bool sorted) {
+    Fixture& f = fixture(static_cast<std::size_t>(state.range(0)), sorted);
     UpdateCounters total;
     std::size_t updates = 0, units = 0;
+    double advance_s = 0;
     for (auto _ : state) {
         const int t0 = f.dm->time();
         const int t = f.dm->next_step();
         f.motion.at(t, f.p0, f.pos);
-        f.dm->advance(t, f.pos);
         const auto start = Clock::now();
+        f.dm->advance(t, f.pos);
+        const auto mid = Clock::now();
         const UpdateReport u = f.dm->update();
-        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+        const auto end = Clock::now();
+        state.SetIterationTime(std::chrono::duration<double>(end - start).count());
+        advance_s += std::chrono::duration<double>(mid - start).count();
         total += u.counters;
         ++updates;
         units += static_cast<std::size_t>(t - t0);
@@ -88,10 +102,13 @@ void BM_DeformUpdate(benchmark::State& state) {
     state.counters["init_s"] = f.init_seconds;
     state.counters["units_per_step"] = double(units) / double(updates);
     state.counters["changes_per_update"] = double(total.changes()) / double(updates);
+    state.counters["advance_s"] = advance_s / double(updates);
     state.counters["flips_per_update"] = double(total.flips) / double(updates);
     state.counters["ns_per_sample"] =
         benchmark::Counter(n * double(updates) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+void BM_DeformUpdate(benchmark::State& state) { update_bench(state, false); }
+void BM_DeformUpdateSorted(benchmark::State& state) { update_bench(state, true); }
 
 /// The baseline: a from-scratch advancing-front reconstruction of the same samples at the
 /// positions of the last update.
@@ -111,20 +128,26 @@ void BM_CgalAdvancingFrontRebuild(benchmark::State& state) {
 
 BENCHMARK(BM_DeformUpdate)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_DeformUpdateSorted)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_CgalAdvancingFrontRebuild)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void print_summary(const dynmesh::bench::RecordingReporter& rep) {
     std::printf("\nSummary: one scheduled update vs. CGAL advancing-front rebuild of the same samples\n");
-    std::printf("%10s %10s %12s %12s %12s %14s %10s\n", "samples", "vertices", "update s", "ns/sample",
-                "changes", "CGAL rebuild s", "ratio");
+    std::printf("%10s %10s %12s %12s %12s %14s %10s %12s %12s\n", "samples", "vertices", "update s", "ns/sample",
+                "changes", "CGAL rebuild s", "ratio", "sorted s", "rand/sorted");
     const auto& upd = rep.runs("BM_DeformUpdate");
+    const auto& sorted = rep.runs("BM_DeformUpdateSorted");
     const auto& cgal = rep.runs("BM_CgalAdvancingFrontRebuild");
     for (const auto& [n, r] : upd) {
         std::printf("%10zu %10.0f %12.4f %12.1f %12.0f", n, r.counter("vertices", 0), r.seconds,
                     r.seconds / double(n) * 1e9, r.counter("changes_per_update", 0));
         if (cgal.count(n))
             std::printf(" %14.3f %10.1f", cgal.at(n).seconds, cgal.at(n).seconds / r.seconds);
+        else
+            std::printf(" %14s %10s", "-", "-");
+        if (sorted.count(n)) std::printf(" %12.4f %12.2f", sorted.at(n).seconds, r.seconds / sorted.at(n).seconds);
         std::printf("\n");
     }
 }

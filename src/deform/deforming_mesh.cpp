@@ -6,11 +6,14 @@
 #include <numeric>
 #include <unordered_set>
 
+#include "dynmesh/deform/initial_mesh.hpp"
 #include "dynmesh/deform/local_ops.hpp"
+#include "dynmesh/deform/scenario.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/flip_smooth.hpp"
 #include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/spatial_sort.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/mesh/soup.hpp"
@@ -37,6 +40,9 @@ std::string_view to_string(Violation v) {
         case Violation::RemoveFailed: return "remove_failed";
         case Violation::NonEmptyBall: return "non_empty_ball";
         case Violation::Rebuild: return "rebuild";
+        case Violation::TopologyRollback: return "rollback";
+        case Violation::Coarsened: return "coarsened";
+        case Violation::InitFallback: return "init_fallback";
     }
     return "unknown";
 }
@@ -52,6 +58,8 @@ UpdateCounters& UpdateCounters::operator+=(const UpdateCounters& o) {
     flip_refusals += o.flip_refusals;
     samples_inserted += o.samples_inserted;
     samples_deleted += o.samples_deleted;
+    rebuilds += o.rebuilds;
+    rollbacks += o.rollbacks;
     distance_evals += o.distance_evals;
     seconds += o.seconds;
     return *this;
@@ -70,6 +78,8 @@ double growth_bound(double kappa) {
 
 std::string id_str(SampleId id) { return "sample " + std::to_string(id); }
 
+constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
+
 /// The largest triangle circumradius of m (infinite for a degenerate triangle), from
 /// R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2), one square root in all.
 double largest_circumradius(const SurfaceMesh& m) {
@@ -87,9 +97,15 @@ double largest_circumradius(const SurfaceMesh& m) {
 
 }  // namespace
 
+/// Inside Impl a sample is named by its slot: its rank along the Morton curve of P(0) (samples
+/// inserted later take the next slots), so that loops over samples and mesh vertices (which
+/// canonicalize() numbers in slot order) visit the surface in a spatially coherent order.
+/// ext[slot] is the caller's SampleId; every message and accessor translates.
 struct DeformingMesh::Impl {
     DeformParams params;
     InitReport init;
+    std::vector<SampleId> ext;         ///< slot -> SampleId
+    std::vector<std::uint32_t> slot_of;  ///< SampleId -> slot
     std::vector<Point3> pos;
     std::vector<State> state;
     std::vector<SampleId> owner;            ///< for a dormant sample: its owner's id
@@ -102,6 +118,7 @@ struct DeformingMesh::Impl {
     std::vector<SampleId> pending_delete;
     std::vector<char> marked;  ///< samples to delete (during Deletion)
     long long euler = 2;
+    std::size_t components = 1;
     int t = 0;
     int next = 0;
     double R_last = 0;
@@ -123,8 +140,23 @@ struct DeformingMesh::Impl {
         pending_violations.push_back(std::move(r));
     }
     [[nodiscard]] SampleId sid(Vertex v) const { return vsample[v]; }
+    [[nodiscard]] std::string idstr(std::uint32_t s) const { return id_str(ext[s]); }
+    /// "(a, b, c)": the SampleIds of a face's vertices.
+    [[nodiscard]] std::string face_str(Face f) const {
+        const auto vs = mesh.face_vertices(f);
+        return "(" + std::to_string(ext[sid(vs[0])]) + ", " + std::to_string(ext[sid(vs[1])]) + ", " +
+               std::to_string(ext[sid(vs[2])]) + ")";
+    }
     [[nodiscard]] const Point3& P(SampleId s) const { return pos[s]; }
 
+    /// A new slot for the next SampleId.
+    std::uint32_t new_slot() {
+        const auto slot = static_cast<std::uint32_t>(pos.size());
+        slot_of.push_back(slot);
+        ext.push_back(static_cast<SampleId>(slot_of.size() - 1));
+        grow(pos.size() + 1);
+        return slot;
+    }
     void grow(std::size_t n) {
         pos.resize(n);
         state.resize(n, State::Dead);
@@ -215,7 +247,7 @@ struct DeformingMesh::Impl {
         if (d > 2 * R) {
             const auto [w, dw] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                               [&](std::uint32_t s) { return state[s] == State::Vertex; });
-            violation(Violation::FarSample, id_str(p) + " is " + std::to_string(d) +
+            violation(Violation::FarSample, idstr(p) + " is " + std::to_string(d) +
                                                 " from the mesh (R = " + std::to_string(R) + "); kept dormant");
             attach(p, w);
             return;
@@ -225,7 +257,7 @@ struct DeformingMesh::Impl {
         touch();
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex) {
-            violation(Violation::AddVertexCase, id_str(p) + " falls on the vertex of " + id_str(sid(r.near_vertex)));
+            violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)));
             attach(p, sid(r.near_vertex));
             return;
         }
@@ -233,7 +265,7 @@ struct DeformingMesh::Impl {
         make_vertex(p, r.vertex);
         if (star_folded(r.vertex, old_normal)) {
             // Sparse samples only (the theory rules it out): take the vertex out again.
-            violation(Violation::AddFolded, id_str(p) + " would fold the mesh; kept dormant");
+            violation(Violation::AddFolded, idstr(p) + " would fold the mesh; kept dormant");
             if (remove_sample(p, nullptr)) {
                 const auto [w, dw] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                                   [&](std::uint32_t s) { return state[s] == State::Vertex; });
@@ -271,7 +303,7 @@ struct DeformingMesh::Impl {
         touch();
         cur.flips += r.flips;
         if (!r.removed) {
-            violation(Violation::RemoveFailed, "vertex of " + id_str(s) + ": " + r.reason);
+            violation(Violation::RemoveFailed, "vertex of " + idstr(s) + ": " + r.reason);
             return false;
         }
         ++cur.removals;
@@ -287,6 +319,9 @@ struct DeformingMesh::Impl {
         for (Edge x : mesh.edges()) e.push_back(x);
         return e;
     }
+    /// The global flip of §4.3 (its cap, when hit, is reported at once; the emptiness of the
+    /// balls is checked by report_balls() on the mesh an update or the initialisation ends
+    /// with).
     void global_flip() {
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
@@ -296,7 +331,60 @@ struct DeformingMesh::Impl {
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
-            violation(Violation::NonEmptyBall, "global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
+            violation(Violation::NonEmptyBall, "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
+    }
+
+    /// §4.3: every diametric ball must be empty of vertices after the global flips (a grid
+    /// over the vertices); reports the balls that still hold one.
+    void report_balls(const char* when) {
+        if (!params.verify_balls) return;
+        const double R = max_circumradius();
+        if (!(R > 0)) return;
+        const BallScan b = scan_balls(vertex_grid(2 * R));
+        if (b.count == 0) return;
+        violation(Violation::NonEmptyBall, std::to_string(b.count) + " diametric balls hold a vertex " + when +
+                                               ", e.g. that of triangle " + face_str(b.first) + " holds " +
+                                               idstr(b.inside) + " (" + std::to_string(cur.flip_refusals) +
+                                               " flips refused by the circumradius guard)");
+    }
+
+    /// Triangles whose diametric ball holds a vertex strictly inside (exact predicate).
+    struct BallScan {
+        std::size_t count = 0;  ///< such triangles
+        Face first;             ///< the first one met, in mesh order
+        std::uint32_t inside = kNoSlot;  ///< a vertex (slot) in its ball
+        std::size_t first_hits = 0;      ///< vertices in its ball
+    };
+    /// `grid` holds every vertex (slots); with a cell of at least twice the largest
+    /// circumradius, the cube around a ball meets at most 2 x 2 x 2 cells.
+    [[nodiscard]] BallScan scan_balls(const PointGrid& grid) const {
+        BallScan b;
+        for (Face f : mesh.faces()) {
+            const auto vs = mesh.face_vertices(f);
+            const Point3 &a = mesh.position(vs[0]), &bb = mesh.position(vs[1]), &c = mesh.position(vs[2]);
+            const Point3 cc = circumcenter(a, bb, c);
+            if (!is_finite(cc)) continue;  // collinear
+            const double r2 = sqnorm(cc - a);
+            const double r2s = r2 * (1 + 2e-9);
+            std::size_t hits = 0;
+            std::uint32_t any = kNoSlot;
+            grid.for_each_candidate(cc, std::sqrt(r2), [&](std::uint32_t w) {
+                if (sqnorm(pos[w] - cc) > r2s) return;
+                const Vertex x = vert_of[w];
+                if (x == vs[0] || x == vs[1] || x == vs[2]) return;
+                if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive) {
+                    ++hits;
+                    if (any == kNoSlot || w < any) any = w;
+                }
+            });
+            if (hits == 0) continue;
+            if (b.count++ == 0) {
+                b.first = f;
+                b.inside = any;
+                b.first_hits = hits;
+            }
+        }
+        return b;
     }
 
     // ---- RefineVert (§4.5) ------------------------------------------------------------------
@@ -581,18 +669,35 @@ struct DeformingMesh::Impl {
     }
 
     /// Rebuilds Tri from the current vertex positions (advancing front), every other live
-    /// sample dormant at its nearest vertex.
+    /// sample dormant at its nearest vertex. A result that is not a closed manifold with the
+    /// Euler characteristic and components of Tri(0) is rolled back: the mesh stays as it was
+    /// and Violation::TopologyRollback says why.
     void rebuild() {
         std::vector<SampleId> vs;
         for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
         std::sort(vs.begin(), vs.end());
         std::vector<Point3> pts;
         for (SampleId s : vs) pts.push_back(P(s));
+        const std::string what = "the rebuild from " + std::to_string(vs.size()) + " vertices";
         AdvancingFrontResult af;
         try {
             af = reconstruct_advancing_front_with_report(pts);
         } catch (const Error& e) {
-            violation(Violation::Rebuild, std::string("rebuild failed, mesh kept: ") + e.what());
+            ++cur.rollbacks;
+            violation(Violation::TopologyRollback, what + " failed (" + e.what() + "); the mesh is kept");
+            return;
+        }
+        MeshCheckOptions co;
+        co.require_closed = true;
+        co.check_degenerate = false;
+        const MeshCheckReport mc = check_mesh(af.mesh, co);
+        if (!mc.ok() || mc.euler != euler || mc.components != components) {
+            ++cur.rollbacks;
+            violation(Violation::TopologyRollback,
+                      what + " is undone: it gives " + (mc.ok() ? "" : "a mesh with problems, ") +
+                          "Euler characteristic " + std::to_string(mc.euler) + " and " + std::to_string(mc.components) +
+                          " components instead of " + std::to_string(euler) + " and " + std::to_string(components) +
+                          "; the mesh is kept");
             return;
         }
         std::vector<SampleId> vsamples;
@@ -600,7 +705,121 @@ struct DeformingMesh::Impl {
         install_mesh(std::move(af.mesh), vsamples);
         global_flip();
         canonicalize();
+        ++cur.rebuilds;
         violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
+    }
+
+    /// Step 1 of §4.1: h0 given, or estimated from the surface, the reference, the initial
+    /// mesh or (last) an advancing-front reconstruction. `positions` in SampleId order.
+    double initial_h0(std::span<const Point3> positions, const InitialSurface& initial) {
+        double h0 = 0;
+        if (params.h0) {
+            h0 = *params.h0;
+        } else if (initial.surface != nullptr) {
+            // A seed unrelated to the samples (which may come from the same generator).
+            const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed ^ 0x9E3779B97F4A7C15ULL);
+            h0 = covering_radius(probes, pos);
+            init.h0_estimated = true;
+        } else if (initial.reference != nullptr) {
+            h0 = covering_radius(reference_probes(*initial.reference), pos);
+            init.h0_estimated = true;
+        } else if (initial.mesh != nullptr) {
+            h0 = largest_circumradius(*initial.mesh);
+            init.h0_estimated = true;
+        } else {
+            h0 = largest_circumradius(reconstruct_advancing_front(positions));
+            init.h0_estimated = true;
+        }
+        if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
+        return h0;
+    }
+
+    /// Steps 2-4 of §4.1: Vert(0) (the greedy h0-net in slot order, or the caller's mesh) and
+    /// Tri(0) (the caller's mesh, on the reference, the restricted Delaunay triangulation on
+    /// the surface, or the advancing front), installed with every other sample dormant.
+    void initial_triangulation(std::span<const Point3> positions, double h0, const InitialSurface& initial) {
+        if (initial.mesh != nullptr) {
+            const SurfaceMesh& m = *initial.mesh;
+            if (initial.vertex_samples.size() != m.vertices_size())
+                throw InvalidInput("deform: the initial mesh has " + std::to_string(m.vertices_size()) +
+                                   " vertices but " + std::to_string(initial.vertex_samples.size()) + " sample ids");
+            std::vector<char> seen(positions.size(), 0);
+            for (SampleId s : initial.vertex_samples) {
+                if (s >= positions.size()) throw InvalidInput("deform: initial mesh vertex names unknown " + id_str(s));
+                if (seen[s]) throw InvalidInput("deform: initial mesh uses " + id_str(s) + " twice");
+                seen[s] = 1;
+            }
+            require_valid_mesh(m, "deform: the initial mesh", MeshCheckOptions{.require_closed = true});
+            SurfaceMesh copy = m;
+            std::vector<SampleId> vs;
+            for (SampleId s : initial.vertex_samples) vs.push_back(slot_of[s]);
+            for (Vertex v : copy.vertices()) copy.position(v) = pos[vs[v.idx()]];
+            init.net = vs.size();
+            init.tri0 = "given";
+            install_mesh(std::move(copy), vs);
+        } else {
+            // The greedy h0-net, scanning the samples in slot order.
+            std::vector<SampleId> vs;
+            PointGrid g(h0);
+            for (SampleId s = 0; s < pos.size(); ++s) {
+                bool close = false;
+                g.for_each_candidate(pos[s], h0, [&](std::uint32_t w) {
+                    if (!close && distance(pos[w], pos[s]) < h0) close = true;
+                });
+                if (!close) {
+                    g.insert(s, pos[s]);
+                    vs.push_back(s);
+                }
+            }
+            init.net = vs.size();
+            if (vs.size() < 4)
+                throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(vs.size()) +
+                                   " samples are at least h0 = " + std::to_string(h0) + " apart");
+            SurfaceMesh m;
+            std::vector<SampleId> mapped;
+            if (initial.reference != nullptr) {
+                ReferenceMesh r;
+                try {
+                    r = initial_mesh_on_reference(pos, vs, *initial.reference, {.refine = params.init_refine});
+                } catch (const InvalidInput& e) {
+                    throw InvalidInput(std::string("deform: cannot build Tri(0) on the reference mesh (") + e.what() + ")");
+                }
+                m = std::move(r.mesh);
+                mapped.assign(r.vertex_sample.begin(), r.vertex_sample.end());
+                init.tri0 = std::string(to_string(r.path));
+                init.net_added = r.added;
+                init.init_insertions = r.promoted;
+                if (!r.fallback_reason.empty())
+                    violation(Violation::InitFallback, "Tri(0) by decimating the reference: " + r.fallback_reason);
+            } else {
+                std::vector<Point3> pts;
+                for (SampleId s : vs) pts.push_back(pos[s]);
+                std::vector<std::uint32_t> used;
+                try {
+                    init.tri0 = initial.surface != nullptr ? "restricted_delaunay_surface" : "advancing_front";
+                    if (initial.surface != nullptr) {
+                        auto r = restricted_delaunay_with_report(pts, *initial.surface);
+                        m = std::move(r.mesh);
+                        used = std::move(r.report.vertex_sample);
+                    } else {
+                        auto r = reconstruct_advancing_front_with_report(pts);
+                        m = std::move(r.mesh);
+                        used = std::move(r.report.vertex_sample);
+                    }
+                } catch (const InvalidInput& e) {
+                    throw InvalidInput(std::string("deform: the sample set is too sparse to mesh (") + e.what() +
+                                       (initial.surface == nullptr
+                                            ? "); with a mesh of the surface, pass it as InitialSurface::reference"
+                                            : ")"));
+                }
+                if (used.size() != pts.size())
+                    throw InvalidInput("deform: the sample set is too sparse to mesh: " +
+                                       std::to_string(pts.size() - used.size()) + " of " + std::to_string(pts.size()) +
+                                       " chosen vertices are in no triangle of the initial mesh");
+                for (std::uint32_t i : used) mapped.push_back(vs[i]);
+            }
+            install_mesh(std::move(m), mapped);
+        }
     }
 
     /// Makes `m` (vertex i = sample vs[i]) the mesh; every other live sample becomes dormant
@@ -683,8 +902,17 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
         if (!is_finite(positions[i]))
             throw InvalidInput("deform: sample " + std::to_string(i) + " has a non-finite coordinate");
     I.params = params;
-    I.grow(positions.size());
-    std::copy(positions.begin(), positions.end(), I.pos.begin());
+    // Slots along the Morton curve of P(0).
+    {
+        const std::vector<std::uint32_t> order = spatial_order(positions);
+        I.grow(positions.size());
+        I.ext.assign(order.begin(), order.end());
+        I.slot_of.assign(positions.size(), kNoSlot);
+        for (std::uint32_t k = 0; k < order.size(); ++k) {
+            I.slot_of[order[k]] = k;
+            I.pos[k] = positions[order[k]];
+        }
+    }
     // Every sample is in P(0): install_mesh() makes it a vertex or places it in a dormant list.
     std::fill(I.state.begin(), I.state.end(), State::Dormant);
     I.live = positions.size();
@@ -704,98 +932,16 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
                                    std::to_string(order[i]) + " coincide");
     }
 
-    // 1. h0
-    double h0 = 0;
-    if (params.h0) {
-        h0 = *params.h0;
-    } else if (initial.surface != nullptr) {
-        // A seed unrelated to the samples (which may come from the same generator).
-        const auto probes = initial.surface->sample_uniform(params.h0_probes, params.seed ^ 0x9E3779B97F4A7C15ULL);
-        const Bbox3 bb = initial.surface->bbox();
-        const double diag = distance(bb.min, bb.max);
-        const double cell = std::max(diag * std::sqrt(1.0 / static_cast<double>(positions.size())), 1e-12);
-        PointGrid g(cell);
-        for (std::uint32_t i = 0; i < positions.size(); ++i) g.insert(i, positions[i]);
-        auto posf = [&](std::uint32_t s) { return positions[s]; };
-        for (const Point3& q : probes)
-            h0 = std::max(h0, g.nearest(q, posf, [](std::uint32_t) { return true; }).second);
-        I.init.h0_estimated = true;
-    } else if (initial.mesh != nullptr) {
-        h0 = largest_circumradius(*initial.mesh);
-        I.init.h0_estimated = true;
-    } else {
-        h0 = largest_circumradius(reconstruct_advancing_front(positions));
-        I.init.h0_estimated = true;
-    }
-    if (!(h0 > 0)) throw InvalidInput("deform: could not estimate h0 (the sampling radius) from the input");
-    I.init.h0 = h0;
-
-    // 2. Vert(0), and 4. Tri(0)
-    std::vector<SampleId> vs;
-    if (initial.mesh != nullptr) {
-        const SurfaceMesh& m = *initial.mesh;
-        if (initial.vertex_samples.size() != m.vertices_size())
-            throw InvalidInput("deform: the initial mesh has " + std::to_string(m.vertices_size()) +
-                               " vertices but " + std::to_string(initial.vertex_samples.size()) + " sample ids");
-        std::vector<char> seen(positions.size(), 0);
-        for (SampleId s : initial.vertex_samples) {
-            if (s >= positions.size()) throw InvalidInput("deform: initial mesh vertex names unknown " + id_str(s));
-            if (seen[s]) throw InvalidInput("deform: initial mesh uses " + id_str(s) + " twice");
-            seen[s] = 1;
-        }
-        require_valid_mesh(m, "deform: the initial mesh", MeshCheckOptions{.require_closed = true});
-        SurfaceMesh copy = m;
-        for (Vertex v : copy.vertices()) copy.position(v) = positions[initial.vertex_samples[v.idx()]];
-        vs = initial.vertex_samples;
-        I.install_mesh(std::move(copy), vs);
-    } else {
-        PointGrid g(h0);
-        auto posf = [&](std::uint32_t s) { return positions[s]; };
-        for (SampleId s = 0; s < positions.size(); ++s) {
-            bool close = false;
-            g.for_each_candidate(positions[s], h0, [&](std::uint32_t w) {
-                if (!close && distance(positions[w], positions[s]) < h0) close = true;
-            });
-            if (!close) {
-                g.insert(s, positions[s]);
-                vs.push_back(s);
-            }
-        }
-        (void)posf;
-        std::vector<Point3> pts;
-        for (SampleId s : vs) pts.push_back(positions[s]);
-        if (pts.size() < 4)
-            throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(pts.size()) +
-                               " samples are at least h0 = " + std::to_string(h0) + " apart");
-        SurfaceMesh m;
-        std::vector<std::uint32_t> used;
-        try {
-            if (initial.surface != nullptr) {
-                auto r = restricted_delaunay_with_report(pts, *initial.surface);
-                m = std::move(r.mesh);
-                used = std::move(r.report.vertex_sample);
-            } else {
-                auto r = reconstruct_advancing_front_with_report(pts);
-                m = std::move(r.mesh);
-                used = std::move(r.report.vertex_sample);
-            }
-        } catch (const InvalidInput& e) {
-            throw InvalidInput(std::string("deform: the sample set is too sparse to mesh (") + e.what() + ")");
-        }
-        if (used.size() != pts.size())
-            throw InvalidInput("deform: the sample set is too sparse to mesh: " +
-                               std::to_string(pts.size() - used.size()) + " of " + std::to_string(pts.size()) +
-                               " chosen vertices are in no triangle of the initial mesh");
-        std::vector<SampleId> mapped;
-        for (std::uint32_t i : used) mapped.push_back(vs[i]);
-        I.install_mesh(std::move(m), mapped);
-    }
+    // 1-4 of §4.1: h0, Vert(0), dormant lists, Tri(0)
+    I.init.h0 = I.initial_h0(positions, initial);
+    I.initial_triangulation(positions, I.init.h0, initial);
     {
         const auto rep = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
         if (!rep.ok())
             throw InvalidInput("deform: the initial mesh is not a closed manifold (the sample set may be too sparse):\n" +
                                rep.summary("  "));
         I.euler = rep.euler;
+        I.components = rep.components;
     }
     I.global_flip();
     I.canonicalize();
@@ -806,8 +952,13 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
         I.refine_vert();
         if (I.cur.insertions == before) break;
     }
+    if (params.init_refine) I.spacing_repair();
+    I.report_balls("after the initialisation's global flips");
     I.init.init_flips = I.cur.flips;
-    I.init.init_insertions = I.cur.insertions;
+    I.init.init_insertions += I.cur.insertions;
+    I.init.init_removals = I.cur.removals;
+    I.init.euler = I.euler;
+    I.init.components = I.components;
     I.cur = {};
     I.schedule();
     I.finish_update();
@@ -816,6 +967,15 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
     I.init.faces = I.mesh.n_faces();
     I.init.R0 = I.R_last;
     I.init.next_step = I.next;
+    {   // spec §4.1: check the invariants at 0 and report any violation
+        InvariantOptions io;
+        io.self_intersections = false;
+        io.empty_balls_soft = true;
+        const InvariantReport inv = check_invariants(io);
+        I.init.invariant_failures = inv.failures;
+        I.init.nonempty_balls = inv.nonempty_balls;
+        I.init.first_nonempty_ball = inv.first_nonempty_ball;
+    }
     I.init.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     I.pending_violations.clear();
 }
@@ -833,9 +993,9 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     if (positions.size() < I.pos.size())
         throw InvalidInput("deform: the position table has " + std::to_string(positions.size()) +
                            " entries but sample ids go up to " + std::to_string(I.pos.size() - 1));
-    for (SampleId s = 0; s < I.pos.size(); ++s)
-        if (I.state[s] != State::Dead && !is_finite(positions[s]))
-            throw InvalidInput("deform: sample " + std::to_string(s) + " has a non-finite position at t = " +
+    for (SampleId id = 0; id < I.pos.size(); ++id)
+        if (I.state[I.slot_of[id]] != State::Dead && !is_finite(positions[id]))
+            throw InvalidInput("deform: sample " + std::to_string(id) + " has a non-finite position at t = " +
                                std::to_string(t));
     StepReport rep;
     rep.t = t;
@@ -845,12 +1005,13 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     SampleId worst = kNoSample;
     for (SampleId s = 0; s < I.pos.size(); ++s) {
         if (I.state[s] == State::Dead) continue;
-        const double d = distance(positions[s], I.pos[s]);
+        const Point3& p = positions[I.ext[s]];
+        const double d = distance(p, I.pos[s]);
         if (d > maxd) {
             maxd = d;
             worst = s;
         }
-        I.pos[s] = positions[s];
+        I.pos[s] = p;
     }
     for (Vertex v : I.mesh.vertices()) I.mesh.position(v) = I.pos[I.sid(v)];
     I.touch();
@@ -858,7 +1019,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     bool trip = false;
     if (maxd > I.params.lambda * dt * (1 + 1e-9)) {
         I.violation(Violation::DisplacementExceedsLambda,
-                    id_str(worst) + " moved " + std::to_string(maxd) + " > lambda = " + std::to_string(I.params.lambda) +
+                    I.idstr(worst) + " moved " + std::to_string(maxd) + " > lambda = " + std::to_string(I.params.lambda) +
                         (dt > 1 ? " x " + std::to_string(dt) + " units" : ""));
         trip = true;
     }
@@ -876,10 +1037,9 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
             if (inverted++ == 0) first_inv = f;
         }
     if (inverted > 0) {
-        const auto vs = I.mesh.face_vertices(first_inv);
-        I.violation(Violation::NormalInverted, std::to_string(inverted) + " triangle normals turned by >= 90 degrees, e.g. (" +
-                                                   std::to_string(I.sid(vs[0])) + ", " + std::to_string(I.sid(vs[1])) + ", " +
-                                                   std::to_string(I.sid(vs[2])) + ")");
+        I.violation(Violation::NormalInverted, std::to_string(inverted) +
+                                                   " triangle normals turned by >= 90 degrees, e.g. " +
+                                                   I.face_str(first_inv));
         trip = true;
     }
     const std::size_t folded = I.folded_edges();
@@ -905,6 +1065,7 @@ UpdateReport DeformingMesh::update() {
     rep.emergency = I.emergency_requested;
     I.cur = {};
     rep.R_before = I.max_circumradius();
+    rep.vertices_before = I.mesh.n_vertices();
     const bool broken = I.folded_now > I.folded_at_step;
     if (broken) I.rebuild();
     I.refine_vert();
@@ -915,10 +1076,17 @@ UpdateReport DeformingMesh::update() {
         I.rebuild();
         I.refine_vert();
     }
+    I.report_balls("after the update's global flips");
     I.schedule();
     I.finish_update();
     I.emergency_requested = false;
     rep.R_after = I.R_last;
+    if (rep.R_before > 0 && rep.R_after > kCoarseningWarningFactor * rep.R_before)
+        I.violation(Violation::Coarsened, "the update coarsened the mesh: R " + std::to_string(rep.R_before) + " -> " +
+                                              std::to_string(rep.R_after) + " (" +
+                                              std::to_string(rep.R_after / rep.R_before) + "x), vertices " +
+                                              std::to_string(rep.vertices_before) + " -> " +
+                                              std::to_string(I.mesh.n_vertices()));
     rep.next_step = I.next;
     rep.samples = I.live;
     rep.vertices = I.mesh.n_vertices();
@@ -933,22 +1101,22 @@ UpdateReport DeformingMesh::update() {
 SampleId DeformingMesh::queue_insertion(const Point3& p) {
     Impl& I = *impl_;
     if (!is_finite(p)) throw InvalidInput("deform: an inserted sample has a non-finite position");
-    const SampleId id = static_cast<SampleId>(I.pos.size());
-    I.grow(I.pos.size() + 1);
-    I.pos[id] = p;
-    I.state[id] = State::Pending;
-    I.pending_insert.push_back(id);
+    if (I.pos.size() + 1 >= kNoSample) throw InvalidInput("deform: too many samples");
+    const std::uint32_t s = I.new_slot();
+    I.pos[s] = p;
+    I.state[s] = State::Pending;
+    I.pending_insert.push_back(s);
     ++I.live;
-    return id;
+    return I.ext[s];
 }
 
 void DeformingMesh::queue_deletion(SampleId id) {
     Impl& I = *impl_;
-    if (id >= I.pos.size() || I.state[id] == State::Dead)
+    if (id >= I.pos.size() || I.state[I.slot_of[id]] == State::Dead)
         throw InvalidInput("deform: cannot delete " + id_str(id) + ": no such live sample");
-    if (I.state[id] == State::Pending)
+    if (I.state[I.slot_of[id]] == State::Pending)
         throw InvalidInput("deform: cannot delete " + id_str(id) + ": its insertion is still queued");
-    I.pending_delete.push_back(id);
+    I.pending_delete.push_back(I.slot_of[id]);
 }
 
 int DeformingMesh::time() const { return impl_->t; }
@@ -958,18 +1126,25 @@ const DeformParams& DeformingMesh::params() const { return impl_->params; }
 const SurfaceMesh& DeformingMesh::mesh() const { return impl_->mesh; }
 SampleId DeformingMesh::sample_of(Vertex v) const {
     if (!v.is_valid() || v.idx() >= impl_->mesh.vertices_size()) return kNoSample;
-    return impl_->vsample[v];
+    const SampleId s = impl_->vsample[v];
+    return s == kNoSample ? kNoSample : impl_->ext[s];
 }
 Vertex DeformingMesh::vertex_of(SampleId id) const {
-    if (id >= impl_->pos.size() || impl_->state[id] != State::Vertex) return Vertex();
-    return impl_->vert_of[id];
+    if (id >= impl_->pos.size()) return Vertex();
+    const std::uint32_t s = impl_->slot_of[id];
+    if (impl_->state[s] != State::Vertex) return Vertex();
+    return impl_->vert_of[s];
 }
 SampleId DeformingMesh::owner_of(SampleId id) const {
-    if (id >= impl_->pos.size() || impl_->state[id] != State::Dormant) return kNoSample;
-    return impl_->owner[id];
+    if (id >= impl_->pos.size()) return kNoSample;
+    const std::uint32_t s = impl_->slot_of[id];
+    if (impl_->state[s] != State::Dormant) return kNoSample;
+    return impl_->ext[impl_->owner[s]];
 }
 std::size_t DeformingMesh::id_capacity() const { return impl_->pos.size(); }
-bool DeformingMesh::is_live(SampleId id) const { return id < impl_->pos.size() && impl_->state[id] != State::Dead; }
+bool DeformingMesh::is_live(SampleId id) const {
+    return id < impl_->pos.size() && impl_->state[impl_->slot_of[id]] != State::Dead;
+}
 std::size_t DeformingMesh::live_samples() const { return impl_->live; }
 double DeformingMesh::max_circumradius() const { return impl_->max_circumradius(); }
 const std::vector<ViolationRecord>& DeformingMesh::violations() const { return impl_->violations; }
@@ -989,6 +1164,8 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
     if (!mc.ok()) fail("mesh: " + mc.summary());
     if (mc.euler != I.euler)
         fail("Euler characteristic " + std::to_string(mc.euler) + " != " + std::to_string(I.euler) + " at t = 0");
+    if (mc.components != I.components)
+        fail(std::to_string(mc.components) + " components != " + std::to_string(I.components) + " at t = 0");
     r.vertices = I.mesh.n_vertices();
     r.R = I.max_circumradius();
     const double R = r.R;
@@ -996,9 +1173,10 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
     for (Vertex v : I.mesh.vertices()) {
         const SampleId s = I.sid(v);
         if (s >= I.pos.size() || I.state[s] != State::Vertex || I.vert_of[s] != v)
-            fail("vertex " + std::to_string(v.idx()) + " is not tied to its sample " + std::to_string(s));
+            fail("vertex " + std::to_string(v.idx()) + " is not tied to its sample" +
+                 (s < I.pos.size() ? " " + std::to_string(I.ext[s]) : ""));
         else if (I.mesh.position(v) != I.pos[s])
-            fail("vertex of " + id_str(s) + " is not at its sample's position");
+            fail("vertex of " + I.idstr(s) + " is not at its sample's position");
     }
     // dormant lists partition P \ Vert
     std::size_t in_lists = 0;
@@ -1007,20 +1185,20 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
             for (std::uint32_t i = 0; i < I.dl[s].size(); ++i) {
                 const SampleId p = I.dl[s][i];
                 if (I.state[p] != State::Dormant || I.owner[p] != s || I.dpos[p] != i)
-                    fail("dormant list of " + id_str(s) + " holds " + id_str(p) + " inconsistently");
+                    fail("dormant list of " + I.idstr(s) + " holds " + I.idstr(p) + " inconsistently");
             }
             in_lists += I.dl[s].size();
         } else if (I.state[s] == State::Dormant) {
             ++r.dormant;
             const SampleId o = I.owner[s];
             if (o >= I.pos.size() || I.state[o] != State::Vertex) {
-                fail(id_str(s) + " is dormant but its owner is not a vertex");
+                fail(I.idstr(s) + " is dormant but its owner is not a vertex");
                 continue;
             }
             const double d = distance(I.pos[s], I.pos[o]);
             r.max_dormant_distance = std::max(r.max_dormant_distance, d);
             if (d > options.dormant_factor * R)
-                fail(id_str(s) + " is " + std::to_string(d / R) + " R from its owner " + id_str(o));
+                fail(I.idstr(s) + " is " + std::to_string(d / R) + " R from its owner " + I.idstr(o));
         }
         if (I.state[s] == State::Vertex || I.state[s] == State::Dormant) ++r.samples;
     }
@@ -1033,8 +1211,7 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
         const double re = radius_edge_ratio(I.mesh.position(vs[0]), I.mesh.position(vs[1]), I.mesh.position(vs[2]));
         r.max_radius_edge = std::max(r.max_radius_edge, re);
         if (!(re <= options.radius_edge_bound))
-            fail("triangle (" + std::to_string(I.sid(vs[0])) + ", " + std::to_string(I.sid(vs[1])) + ", " +
-                 std::to_string(I.sid(vs[2])) + ") has radius-edge ratio " + std::to_string(re));
+            fail("triangle " + I.face_str(f) + " has radius-edge ratio " + std::to_string(re));
     }
     // spacing and empty balls
     if (R > 0) {
@@ -1046,32 +1223,22 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
                 if (w == s) return;
                 const double d = distance(I.pos[w], I.pos[s]);
                 r.min_spacing = std::min(r.min_spacing, d);
-                if (w > s && d < options.spacing_factor * R)
-                    fail("vertices " + id_str(s) + " and " + id_str(w) + " are " + std::to_string(d / R) + " R apart");
+                if (I.ext[w] > I.ext[s] && d < options.spacing_factor * R)
+                    fail("vertices " + I.idstr(s) + " and " + I.idstr(w) + " are " + std::to_string(d / R) + " R apart");
             });
         }
-        if (options.empty_balls)
-            for (Face f : I.mesh.faces()) {
-                const auto vs = I.mesh.face_vertices(f);
-                const Point3 &a = I.mesh.position(vs[0]), &b = I.mesh.position(vs[1]), &c = I.mesh.position(vs[2]);
-                if (collinear(a, b, c)) continue;
-                const Point3 cc = circumcenter(a, b, c);
-                const double rad = distance(cc, a);
-                std::size_t hits = 0;
-                g.for_each_candidate(cc, rad, [&](std::uint32_t w) {
-                    const Vertex x = I.vert_of[w];
-                    if (x == vs[0] || x == vs[1] || x == vs[2]) return;
-                    if (distance(I.pos[w], cc) > rad * (1 + 1e-9)) return;
-                    if (in_diametric_ball(a, b, c, I.pos[w]) == Sign::Positive) ++hits;
-                });
-                if (hits > 0) {
-                    if (r.nonempty_balls++ == 0 && !options.empty_balls_soft)
-                        fail("the diametric ball of triangle (" + std::to_string(I.sid(vs[0])) + ", " +
-                             std::to_string(I.sid(vs[1])) + ", " + std::to_string(I.sid(vs[2])) + ") holds " +
-                             std::to_string(hits) + " vertices");
+        if (options.empty_balls) {
+            const auto b = I.scan_balls(g);
+            r.nonempty_balls = b.count;
+            if (b.count > 0) {
+                r.first_nonempty_ball = "the diametric ball of triangle " + I.face_str(b.first) + " holds " +
+                                        std::to_string(b.first_hits) + " vertices (e.g. " + I.idstr(b.inside) + ")";
+                if (!options.empty_balls_soft) {
+                    fail(r.first_nonempty_ball);
+                    if (b.count > 1) fail(std::to_string(b.count) + " diametric balls hold vertices in all");
                 }
             }
-        if (r.nonempty_balls > 1 && !options.empty_balls_soft) fail(std::to_string(r.nonempty_balls) + " diametric balls hold vertices in all");
+        }
     }
     if (options.self_intersections) {
         r.self_intersections = count_self_intersections(I.mesh);

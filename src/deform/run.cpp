@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <sstream>
 
 #include "dynmesh/error.hpp"
@@ -22,6 +21,10 @@ Schedule parse_schedule(std::string_view name) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+std::string record_line(const ViolationRecord& v) {
+    return "t=" + std::to_string(v.t) + ": " + std::string(to_string(v.kind)) + ": " + v.detail;
+}
 
 FrameMetrics unmeasured(int t) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -62,14 +65,26 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     rep.samples = pool_of.size();
 
     const auto t_init = Clock::now();
-    InitialSurface init{.surface = s.surface0.get(), .mesh = nullptr, .vertex_samples = {}};
-    if (!s.surface0 && s.initial_mesh) {
-        init.mesh = &*s.initial_mesh;
-        init.vertex_samples.resize(s.initial_mesh->vertices_size());
-        std::iota(init.vertex_samples.begin(), init.vertex_samples.end(), SampleId{0});
-    }
+    InitialSurface init{.surface = s.surface0.get(), .mesh = nullptr, .vertex_samples = {}, .reference = nullptr};
+    if (!s.surface0 && s.input_mesh) init.reference = &*s.input_mesh;
     DeformingMesh dm(x0, params, init);
     rep.seconds_init = std::chrono::duration<double>(Clock::now() - t_init).count();
+    rep.init_vertices = dm.init_report().vertices;
+    rep.euler = dm.init_report().euler;
+    if (options.check_invariants) {  // the invariants at t = 0, as after an update
+        const InitReport& ir = dm.init_report();
+        rep.nonempty_balls_max = ir.nonempty_balls;
+        rep.nonempty_balls_total = ir.nonempty_balls;
+        if (ir.nonempty_balls > 0) {
+            ++rep.updates_with_nonempty_balls;
+            rep.first_nonempty_balls.push_back("t=0: " + ir.first_nonempty_ball + " (" +
+                                               std::to_string(ir.nonempty_balls) + " such triangles)");
+        }
+        if (!ir.invariant_failures.empty()) {
+            ++rep.invariant_failures;
+            rep.first_invariant_failures.push_back("t=0: " + ir.invariant_failures.front());
+        }
+    }
 
     GroundTruth truth(s);
     std::vector<Point3> pos(x0.size());
@@ -116,6 +131,8 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             rep.worst_min_edge_angle_deg = std::min(rep.worst_min_edge_angle_deg, f.min_edge_angle_deg);
             rep.self_intersections += f.self_intersections;
             rep.inverted += f.inverted;
+            if (f.self_intersections > 0 && rep.first_self_intersection_t < 0) rep.first_self_intersection_t = t;
+            if (f.inverted > 0 && rep.first_inverted_t < 0) rep.first_inverted_t = t;
         }
         row.metrics.t = t;
         rep.log.push_back(row);
@@ -173,6 +190,9 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             rep.removals += c.removals;
             rep.samples_inserted += c.samples_inserted;
             rep.samples_deleted += c.samples_deleted;
+            rep.rebuilds += c.rebuilds;
+            rep.rollbacks += c.rollbacks;
+            rep.flip_refusals += c.flip_refusals;
             if (options.check_invariants) {
                 InvariantOptions io;
                 io.self_intersections = false;  // measured at every unit below
@@ -180,6 +200,9 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                 const InvariantReport inv = dm.check_invariants(io);
                 rep.nonempty_balls_max = std::max(rep.nonempty_balls_max, inv.nonempty_balls);
                 rep.nonempty_balls_total += inv.nonempty_balls;
+                if (inv.nonempty_balls > 0 && rep.updates_with_nonempty_balls++ < 10)
+                    rep.first_nonempty_balls.push_back("t=" + std::to_string(t) + ": " + inv.first_nonempty_ball + " (" +
+                                                       std::to_string(inv.nonempty_balls) + " such triangles)");
                 if (!inv.ok) {
                     ++rep.invariant_failures;
                     if (rep.first_invariant_failures.size() < 10)
@@ -189,9 +212,73 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
         }
         measure(t, c, due, emergency, nviol);
     }
-    for (const auto& v : dm.violations()) ++rep.violations[std::string(to_string(v.kind))];
+    std::size_t warned = 0;
+    for (const auto& v : dm.violations()) {
+        const std::string kind(to_string(v.kind));
+        if (rep.violations[kind]++ < kViolationExamples) rep.violation_examples.push_back(v);
+        if (v.kind == Violation::Coarsened || v.kind == Violation::TopologyRollback ||
+            v.kind == Violation::InitFallback) {
+            if (warned++ < kMaxWarnings) rep.warnings.push_back(record_line(v));
+        }
+    }
+    if (warned > kMaxWarnings)
+        rep.warnings.push_back(std::to_string(warned - kMaxWarnings) + " more warnings (coarsened, rollback)");
     rep.seconds_total = std::chrono::duration<double>(Clock::now() - t_start).count();
     return rep;
+}
+
+std::string_view to_string(CheckLevel level) {
+    switch (level) {
+        case CheckLevel::Off: return "off";
+        case CheckLevel::Invariants: return "invariants";
+        case CheckLevel::Strict: return "strict";
+    }
+    return "unknown";
+}
+
+CheckLevel parse_check_level(std::string_view name) {
+    if (name == "off") return CheckLevel::Off;
+    if (name == "invariants" || name == "on") return CheckLevel::Invariants;
+    if (name == "strict") return CheckLevel::Strict;
+    throw InvalidInput("unknown check level '" + std::string(name) + "' (expected off, invariants or strict)");
+}
+
+std::vector<std::string> check_failures(const DeformRunReport& r, CheckLevel level) {
+    std::vector<std::string> out;
+    if (level == CheckLevel::Off) return out;
+    if (r.invariant_failures > 0) {
+        out.push_back(std::to_string(r.invariant_failures) + " updates failed the invariant checks");
+        for (const std::string& f : r.first_invariant_failures) out.push_back(f);
+    }
+    if (level == CheckLevel::Strict && r.updates_with_nonempty_balls > 0) {
+        out.push_back(std::to_string(r.updates_with_nonempty_balls) +
+                      " updates left diametric balls holding a vertex (at most " + std::to_string(r.nonempty_balls_max) +
+                      " triangles at once)");
+        for (const std::string& f : r.first_nonempty_balls) out.push_back(f);
+    }
+    if (r.self_intersections > 0)
+        out.push_back("t=" + std::to_string(r.first_self_intersection_t) + ": self-intersections (" +
+                      std::to_string(r.self_intersections) + " intersecting triangle pairs over the measured time units)");
+    if (r.inverted > 0)
+        out.push_back("t=" + std::to_string(r.first_inverted_t) + ": inverted triangles (" + std::to_string(r.inverted) +
+                      " over the measured time units)");
+    // Records of one kind: the examples the report keeps, then a count of the rest.
+    auto records = [&](auto&& wanted) {
+        for (const auto& [kind, n] : r.violations) {
+            std::size_t shown = 0;
+            for (const ViolationRecord& v : r.violation_examples)
+                if (std::string(to_string(v.kind)) == kind && wanted(v.kind)) {
+                    out.push_back(record_line(v));
+                    ++shown;
+                }
+            if (shown > 0 && n > shown) out.push_back(kind + ": " + std::to_string(n - shown) + " more");
+        }
+    };
+    if (level == CheckLevel::Strict)
+        records([](Violation) { return true; });
+    else
+        records([](Violation k) { return k == Violation::TopologyRollback; });
+    return out;
 }
 
 std::string log_csv(const DeformRunReport& report) {

@@ -755,10 +755,6 @@ Scenario mesh_scenario(const std::string& path, const ScenarioOptions& o, double
                            "' is not a closed oriented 2-manifold (" +
                            std::to_string(rep.boundary_edges) + " boundary edges, " +
                            std::to_string(rep.n_problems) + " problems):\n" + rep.summary("  "));
-    if (mesh.n_vertices() < 100)
-        throw InvalidInput("make_scenario: mesh file '" + path + "' has only " +
-                           std::to_string(mesh.n_vertices()) +
-                           " vertices; at least 100 are needed");
 
     Scenario s;
     s.name = "mesh:" + std::filesystem::path(path).filename().string() + "+" + warp;
@@ -769,7 +765,7 @@ Scenario mesh_scenario(const std::string& path, const ScenarioOptions& o, double
     const std::size_t nv = mesh.n_vertices();
     const std::size_t n_init = std::min(o.samples, nv);
     s.normals0 = vertex_normals(mesh);
-    if (o.samples >= nv) s.initial_mesh = mesh;  // triangulates P(0) = every input vertex
+    s.input_mesh = mesh;
     int levels = 0;
     while (levels < 3 && 2 * mesh.n_vertices() < o.pool_factor * n_init) {
         mesh = subdivided(mesh, s.normals0);

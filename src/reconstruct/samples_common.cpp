@@ -95,6 +95,8 @@ ManifoldDefects find_manifold_defects(std::span<const IndexTriangle> triangles,
     out.edges = count.size();
     for (const auto& [key, c] : count) {
         if (c[0] == 2 && c[1] == 1) continue;
+        out.vertices.push_back(static_cast<std::uint32_t>(key >> 32));
+        out.vertices.push_back(static_cast<std::uint32_t>(key & 0xFFFFFFFFu));
         if (c[0] == 1) {
             ++out.boundary_edges;
         } else if (c[0] > 2) {
@@ -144,8 +146,13 @@ ManifoldDefects find_manifold_defects(std::span<const IndexTriangle> triangles,
                 --components;
             }
         }
-        if (components != 1) ++out.pinched_vertices;
+        if (components != 1) {
+            ++out.pinched_vertices;
+            out.vertices.push_back(v);
+        }
     }
+    std::sort(out.vertices.begin(), out.vertices.end());
+    out.vertices.erase(std::unique(out.vertices.begin(), out.vertices.end()), out.vertices.end());
     return out;
 }
 

@@ -35,6 +35,8 @@ struct ManifoldDefects {
     std::size_t overused_edges = 0;     ///< in three or more triangles
     std::size_t misoriented_edges = 0;  ///< in two triangles with the same direction
     std::size_t pinched_vertices = 0;   ///< link is not one cycle (edges otherwise fine)
+    /// Where: the ends of every defective edge and every pinched vertex, sorted, unique.
+    std::vector<std::uint32_t> vertices;
     [[nodiscard]] std::size_t non_manifold_edges() const { return boundary_edges + overused_edges; }
     [[nodiscard]] bool ok() const {
         return non_manifold_edges() + misoriented_edges + pinched_vertices == 0;

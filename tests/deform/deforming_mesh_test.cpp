@@ -2,9 +2,11 @@
 // (spec §8 acceptance checks 1-5, 8, 9, 12).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <numeric>
 
 #include "dynmesh/deform/deforming_mesh.hpp"
 #include "dynmesh/error.hpp"
@@ -334,11 +336,14 @@ TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {
     params.h0 = 0.09;
     Sphere sphere(Point3{0, 0, 0}, 1.0);
     DeformingMesh dm(P0, params, {.surface = &sphere});
-    // Push one vertex deep through the surface: its triangles turn inside out.
-    const Vertex v = *dm.mesh().vertices().begin();
-    const SampleId id = dm.sample_of(v);
+    // Move one vertex (that of the smallest sample id) along the sphere past a neighbour
+    // (to its mirror image there): the triangles it drags over turn inside out.
+    SampleId id = kNoSample;
+    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    const Vertex v = dm.vertex_of(id);
+    const SampleId w = dm.sample_of(dm.mesh().to_vertex(*dm.mesh().outgoing_halfedges(v).begin()));
     auto pos = P0;
-    pos[id] = P0[id] * 0.5;
+    pos[id] = normalized(2.0 * P0[w] - P0[id]);
     const auto st = dm.advance(1, pos);
     bool inverted = false;
     for (const auto& x : st.violations) inverted |= x.kind == Violation::NormalInverted;
@@ -388,6 +393,61 @@ TEST(DeformDeterminism, SameInputSameMesh) {
     EXPECT_EQ(a.triangles, b.triangles);
     ASSERT_EQ(a.points.size(), b.points.size());
     for (std::size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]);
+}
+
+TEST(DeformOrder, TheCallersNumberingDoesNotChangeTheResult) {
+    // The same samples numbered two ways: the meshes (as triangles of the samples), the
+    // dormant owners and the change counts agree after init and after every update.
+    const auto P0 = sphere_samples(1500, 61);
+    std::vector<SampleId> perm(P0.size());
+    std::iota(perm.begin(), perm.end(), SampleId{0});
+    Rng rng(5);
+    for (std::size_t i = perm.size() - 1; i > 0; --i)
+        std::swap(perm[i], perm[static_cast<std::size_t>(rng.below(i + 1))]);
+    auto renumbered = [&](const std::vector<Point3>& p) {  // sample i of B is sample perm[i] of A
+        std::vector<Point3> q(p.size());
+        for (std::size_t i = 0; i < p.size(); ++i) q[i] = p[perm[i]];
+        return q;
+    };
+    DeformParams params;
+    params.lambda = 0.004;
+    params.h0 = 0.1;
+    params.kappa = 8;
+    const Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh a(P0, params, {.surface = &sphere}), b(renumbered(P0), params, {.surface = &sphere});
+    auto triangles = [](const DeformingMesh& dm, const std::vector<SampleId>* map) {
+        std::vector<std::array<SampleId, 3>> out;
+        for (Face f : dm.mesh().faces()) {
+            const auto vs = dm.mesh().face_vertices(f);
+            std::array<SampleId, 3> t{};
+            for (int k = 0; k < 3; ++k) {
+                const SampleId s = dm.sample_of(vs[static_cast<std::size_t>(k)]);
+                t[static_cast<std::size_t>(k)] = map ? (*map)[s] : s;
+            }
+            std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+            out.push_back(t);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    auto same = [&](const char* when) {
+        ASSERT_EQ(triangles(a, nullptr), triangles(b, &perm)) << when;
+        for (SampleId i = 0; i < P0.size(); ++i) {
+            const SampleId ob = b.owner_of(i);
+            ASSERT_EQ(a.owner_of(perm[i]), ob == kNoSample ? kNoSample : perm[ob]) << when << ", sample " << i;
+        }
+    };
+    same("init");
+    for (int step = 0; step < 3; ++step) {
+        const int t = a.next_step();
+        ASSERT_EQ(b.next_step(), t);
+        const auto P = stretched(P0, 1.0 + 0.02 * t);
+        a.advance(t, P);
+        b.advance(t, renumbered(P));
+        const UpdateReport ua = a.update(), ub = b.update();
+        EXPECT_EQ(ua.counters.changes(), ub.counters.changes());
+        same("after an update");
+    }
 }
 
 TEST(PointGrid, NearestAgreesWithBruteForce) {

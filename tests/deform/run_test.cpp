@@ -2,6 +2,7 @@
 // (spec §8.2-8.3: invariants at every update, quality at every unit).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynmesh/deform/run.hpp"
@@ -101,6 +102,92 @@ TEST(DeformRun, EveryStepScheduleUpdatesAtEveryUnit) {
     EXPECT_EQ(parse_schedule("paper"), Schedule::Paper);
     EXPECT_EQ(parse_schedule("every-step"), Schedule::EveryStep);
     EXPECT_THROW((void)parse_schedule("sometimes"), InvalidInput);
+}
+
+TEST(DeformRun, SpacingRepairMakesTheRemovesOfTheAnalyticScenarios) {
+    // The analytic scenarios delete no sample, so every Remove comes from the spacing repair
+    // (spec §9 P7, not in the paper, on by default). Without it there is no Remove, and
+    // compression brings old vertex pairs below R/3: the spacing invariant fails.
+    ScenarioOptions so;
+    so.samples = 1500;
+    so.steps = 100;
+    so.speed = 0.5;
+    const Scenario s = make_scenario("stretch", so);
+    ASSERT_FALSE(s.edits);
+    DeformRunOptions ro;
+    ro.check_invariants = true;
+    ro.measure_every = 0;
+    const auto on = run_deform(s, ro);
+    std::size_t repairs = 0;
+    for (const DeformLogRow& row : on.log) repairs += row.counters.spacing_repairs;
+    EXPECT_GT(on.removals, 0u);
+    EXPECT_GT(repairs, 0u);
+    EXPECT_EQ(on.invariant_failures, 0u) << (on.first_invariant_failures.empty() ? "" : on.first_invariant_failures[0]);
+    ro.params.spacing_repair = false;
+    const auto off = run_deform(s, ro);
+    EXPECT_EQ(off.removals, 0u);
+    EXPECT_GT(off.insertions, 0u);
+    EXPECT_GT(off.invariant_failures, 0u);
+    ASSERT_FALSE(off.first_invariant_failures.empty());
+    EXPECT_NE(off.first_invariant_failures[0].find(" R apart"), std::string::npos) << off.first_invariant_failures[0];
+}
+
+TEST(DeformCheck, EveryReasonIsListedWithItsTime) {
+    DeformRunReport r;
+    EXPECT_TRUE(check_failures(r, CheckLevel::Invariants).empty());
+    EXPECT_TRUE(check_failures(r, CheckLevel::Strict).empty());
+    r.invariant_failures = 2;
+    r.first_invariant_failures = {"t=3: vertices sample 1 and sample 2 are 0.2 R apart", "t=4: x"};
+    r.self_intersections = 4;
+    r.first_self_intersection_t = 7;
+    r.inverted = 1;
+    r.first_inverted_t = 9;
+    r.updates_with_nonempty_balls = 1;
+    r.nonempty_balls_max = 3;
+    r.first_nonempty_balls = {"t=2: the diametric ball of triangle (1, 2, 3) holds 1 vertices"};
+    r.violations = {{"rollback", 3}, {"step_too_short", 1}};
+    r.violation_examples = {{5, Violation::TopologyRollback, "the rebuild is undone"},
+                            {6, Violation::StepTooShort, "floor(R / (kappa lambda)) = 0"}};
+    const auto inv = check_failures(r, CheckLevel::Invariants);
+    auto has = [](const std::vector<std::string>& lines, const std::string& start, const std::string& part) {
+        return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+            return l.rfind(start, 0) == 0 && l.find(part) != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(has(inv, "2 updates", "invariant"));
+    EXPECT_TRUE(has(inv, "t=3: ", "R apart"));
+    EXPECT_TRUE(has(inv, "t=4: ", "x"));
+    EXPECT_TRUE(has(inv, "t=7: ", "self-intersections (4"));
+    EXPECT_TRUE(has(inv, "t=9: ", "inverted"));
+    EXPECT_TRUE(has(inv, "t=5: rollback: ", "undone"));
+    EXPECT_TRUE(has(inv, "rollback: 2 more", ""));
+    EXPECT_FALSE(has(inv, "", "step_too_short"));
+    EXPECT_FALSE(has(inv, "", "diametric ball"));
+    const auto strict = check_failures(r, CheckLevel::Strict);
+    for (const std::string& l : inv) EXPECT_NE(std::find(strict.begin(), strict.end(), l), strict.end()) << l;
+    EXPECT_TRUE(has(strict, "t=6: step_too_short: ", "kappa"));
+    EXPECT_TRUE(has(strict, "t=2: ", "diametric ball of triangle (1, 2, 3)"));
+    EXPECT_TRUE(check_failures(r, CheckLevel::Off).empty());
+    EXPECT_EQ(parse_check_level("strict"), CheckLevel::Strict);
+    EXPECT_EQ(parse_check_level("on"), CheckLevel::Invariants);
+    EXPECT_EQ(parse_check_level(to_string(CheckLevel::Invariants)), CheckLevel::Invariants);
+    EXPECT_THROW((void)parse_check_level("sometimes"), InvalidInput);
+}
+
+TEST(DeformCheck, StrictFailsOnTheMonitorsOfAValidRun) {
+    // Too fast for its sampling (steps 100 at 1500 samples): floor(R / (kappa lambda)) = 0 at
+    // every step. The mesh stays valid, so --check passes, but --check=strict lists each
+    // step_too_short with its time unit.
+    const auto r = run("stretch", 1500, 100, 0.5, Schedule::Paper, 0);
+    ASSERT_GT(r.violations.count("step_too_short"), 0u);
+    EXPECT_TRUE(check_failures(r, CheckLevel::Invariants).empty())
+        << check_failures(r, CheckLevel::Invariants).front();
+    const auto strict = check_failures(r, CheckLevel::Strict);
+    EXPECT_TRUE(std::any_of(strict.begin(), strict.end(),
+                            [](const std::string& l) { return l.rfind("t=0: step_too_short: ", 0) == 0; }));
+    EXPECT_TRUE(std::any_of(strict.begin(), strict.end(), [](const std::string& l) {
+        return l.rfind("step_too_short: ", 0) == 0 && l.find(" more") != std::string::npos;
+    }));
 }
 
 TEST(DeformRun, LogCsvHasOneRowPerTimeUnit) {

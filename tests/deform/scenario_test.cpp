@@ -725,8 +725,6 @@ TEST(Scenario, BadInputsThrowNamingTheProblem) {
     expect_invalid([&] { (void)make_scenario(pinched, o); }, "cow_nonmanifold_vertex.obj");
     const std::string empty = test::shared_data("meshes/invalid/empty.off").string();
     expect_invalid([&] { (void)make_scenario(empty, o); }, "cannot use mesh file");
-    const std::string cube = test::shared_data("meshes/cube_binary.ply").string();
-    expect_invalid([&] { (void)make_scenario(cube, o); }, "at least 100");
     const std::string dir = test::shared_data("meshes").string();
     expect_invalid([&] { (void)make_scenario(dir, o); }, "cannot use mesh file");
 }

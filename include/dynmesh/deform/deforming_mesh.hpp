@@ -24,7 +24,14 @@
 /// until then the caller must still pass its position to advance(). `queue_deletion()` keeps
 /// the sample live until the next update.
 ///
-/// Determinism: equal inputs give bit-identical results; ties break on SampleId.
+/// Order of work: inside, the samples are numbered along a Morton curve of P(0) (inserted
+/// samples follow in insertion order) and the mesh vertices in that order, so that RefineVert,
+/// Decimation, the flips after Add and Remove and the measures visit the surface in a spatially
+/// coherent order whatever the caller's numbering. Every output (sample_of, owner_of,
+/// violation and invariant messages) uses the caller's SampleIds.
+///
+/// Determinism: equal inputs give bit-identical results; ties break on the internal order,
+/// itself a function of P(0) alone.
 
 #include <cstdint>
 #include <limits>
@@ -74,21 +81,34 @@ struct DeformParams {
     /// closer than R/3 (old vertices under compression), remove one vertex of each such pair
     /// (Decimation with radius R/3) and run RefineVert, so spacing >= R/3 holds at every step.
     bool spacing_repair = true;
+    /// Spec §4.3: after the global flips of every update (and at t = 0), check every
+    /// triangle's diametric ball against a grid of the vertices and report the balls that
+    /// hold one (Violation::NonEmptyBall). Costs about one global flip pass (some 60 % of a
+    /// 100K-sample update on the sphere); off, only a flip loop that hits its cap is reported.
+    bool verify_balls = true;
     /// Number of probe points for estimating h0 from InitialSurface::surface.
     std::size_t h0_probes = 200000;
     std::uint64_t seed = 1;
 };
 
-/// What the library knows about Sigma(0) besides the samples (all optional).
+/// What the library knows about Sigma(0) besides the samples (all optional). Tri(0) comes
+/// from the first of: mesh, reference, surface; without any, it is reconstructed with CGAL's
+/// advancing front (which needs dense samples).
 struct InitialSurface {
     /// The surface itself: h0 is estimated by probing it, and Tri(0) is the restricted
     /// Delaunay triangulation of Vert(0).
     const ImplicitSurface* surface = nullptr;
     /// A caller-supplied closed triangulation of Vert(0): mesh vertex i is sample
-    /// vertex_samples[i]. Without it (and without a surface) Tri(0) is reconstructed with
-    /// CGAL's advancing front.
+    /// vertex_samples[i]. Used as Tri(0) as it is (spec §4.1 (a)).
     const SurfaceMesh* mesh = nullptr;
     std::vector<SampleId> vertex_samples;
+    /// A closed mesh of Sigma(0) whose vertices need not be samples (e.g. the input mesh the
+    /// samples were taken from; spec §10.5 B). h0 is estimated from it (covering radius of its
+    /// vertices and face barycentres), and Tri(0) is the restricted Delaunay triangulation of
+    /// Vert(0) against it (restricted_delaunay_on_mesh(): AABB-tree queries on this mesh, with
+    /// samples added where the net is too sparse for it), with its Euler characteristic and
+    /// number of components. Nothing is reconstructed.
+    const SurfaceMesh* reference = nullptr;
 };
 
 /// Motion-model monitors and algorithm diagnostics (spec §9 P5). None is silent.
@@ -104,8 +124,18 @@ enum class Violation {
     FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
     AddFolded,                  ///< Add would fold the mesh (sparse samples); undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation
-    NonEmptyBall,               ///< a diametric ball still holds a vertex after flipping
-    Rebuild                     ///< the mesh was rebuilt from scratch to recover
+    /// A diametric ball holds a vertex once an update's (or the initialisation's) global flips
+    /// are done (DeformParams::verify_balls), or a flip loop stopped at its cap.
+    NonEmptyBall,
+    Rebuild,                    ///< the mesh was rebuilt from scratch to recover
+    /// A rebuild was undone: its result was not a closed manifold with the Euler
+    /// characteristic and components of Tri(0) (or the reconstruction failed); the mesh from
+    /// before the rebuild is kept.
+    TopologyRollback,
+    Coarsened,                  ///< one update raised R by more than 2x (e.g. a hole was cut)
+    /// Tri(0) on the reference mesh had to decimate the reference (no restricted Delaunay
+    /// triangulation with its topology; the detail says where).
+    InitFallback
 };
 [[nodiscard]] std::string_view to_string(Violation v);
 
@@ -127,6 +157,8 @@ struct UpdateCounters {
     std::size_t spacing_repairs = 0;  ///< updates that ran the spacing repair (spec §9 P7)
     std::size_t samples_inserted = 0;  ///< user insertions applied
     std::size_t samples_deleted = 0;   ///< user deletions applied
+    std::size_t rebuilds = 0;          ///< rebuilds from scratch installed
+    std::size_t rollbacks = 0;         ///< rebuilds undone (Violation::TopologyRollback)
     std::size_t distance_evals = 0;
     double seconds = 0;
     UpdateCounters& operator+=(const UpdateCounters& o);
@@ -139,7 +171,8 @@ struct UpdateReport {
     UpdateCounters counters;
     double R_before = 0, R_after = 0;  ///< largest circumradius at the start and the end
     int next_step = 0;
-    std::size_t samples = 0, vertices = 0;
+    std::size_t samples = 0, vertices = 0;  ///< at the end
+    std::size_t vertices_before = 0;        ///< at the start
     std::vector<ViolationRecord> violations;
 };
 
@@ -151,6 +184,9 @@ struct StepReport {
     double R = 0;                 ///< current largest circumradius
     std::vector<ViolationRecord> violations;
 };
+
+/// One update raising R by more than this factor is reported (Violation::Coarsened).
+inline constexpr double kCoarseningWarningFactor = 2.0;
 
 struct InvariantOptions {
     bool self_intersections = true;  ///< run the (n log n) self-intersection test
@@ -172,6 +208,7 @@ struct InvariantReport {
     double max_radius_edge = 0;
     double max_dormant_distance = 0;    ///< over dormant points, distance to the owner
     std::size_t nonempty_balls = 0;
+    std::string first_nonempty_ball;    ///< the first such triangle and a vertex in its ball
     std::size_t self_intersections = 0;
     std::size_t samples = 0, vertices = 0, dormant = 0;
 };
@@ -183,8 +220,24 @@ struct InitReport {
     double R0 = 0;
     int next_step = 0;
     std::size_t init_flips = 0;
+    /// How Tri(0) was built: "given" (InitialSurface::mesh), "restricted_delaunay" or
+    /// "decimated" (on InitialSurface::reference), "restricted_delaunay_surface",
+    /// "advancing_front".
+    std::string tri0;
+    std::size_t net = 0;        ///< the h0-net Vert(0) before Tri(0) was built
+    std::size_t net_added = 0;  ///< samples the restricted Delaunay rounds added to the net
+    std::size_t init_removals = 0;  ///< vertices the spacing repair removed at t = 0
+    long long euler = 0;            ///< Euler characteristic of Tri(0), kept by every update
+    std::size_t components = 0;     ///< connected components of Tri(0)
+    /// check_invariants() at t = 0 (without the self-intersection test; spec §4.1): its
+    /// failures other than non-empty diametric balls (empty when the invariants hold), and
+    /// those balls apart.
+    std::vector<std::string> invariant_failures;
+    std::size_t nonempty_balls = 0;
+    std::string first_nonempty_ball;
     /// Samples made vertices by running RefineVert to a fixed point at t = 0 (not in the
-    /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps).
+    /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps),
+    /// on the reference mesh's vertex set or by Add.
     std::size_t init_insertions = 0;
     double seconds = 0;
 };
@@ -195,7 +248,8 @@ public:
     /// Tri(0), first step. positions[i] is sample i.
     /// \throw InvalidInput for lambda <= 0 or non-finite, kappa <= 0, fewer than 4 samples,
     ///        a non-finite position (naming the id), coincident samples, a sample set too
-    ///        sparse to mesh (the initial mesh is not a closed manifold), or an inconsistent
+    ///        sparse to mesh (the initial mesh is not a closed manifold, or, with a
+    ///        reference, has not its topology after the refinement rounds), or an inconsistent
     ///        InitialSurface::mesh.
     DeformingMesh(std::span<const Point3> positions, const DeformParams& params,
                   const InitialSurface& initial = {});
@@ -245,7 +299,7 @@ public:
     [[nodiscard]] std::size_t updates() const;
 
     /// The invariants of the paper computable from the samples (spec §3, §8.2): mesh
-    /// validity (closed oriented manifold, Euler characteristic unchanged), radius-edge
+    /// validity (closed oriented manifold, Euler characteristic and components unchanged), radius-edge
     /// ratios, spacing >= R/3, dormant lists partition P \ Vert with every dormant point
     /// within 5R/4 of its owner, empty diametric balls, no self-intersection.
     [[nodiscard]] InvariantReport check_invariants(const InvariantOptions& options = {}) const;

@@ -46,7 +46,8 @@ struct DeformRunOptions {
     /// and T (for counting changes over long runs).
     int measure_every = 1;
     MeasureOptions measure{.hausdorff = true, .self_intersections = true, .sampling_radius = true};
-    /// Run DeformingMesh::check_invariants() after every update (reported, never fatal).
+    /// Run DeformingMesh::check_invariants() after every update (reported, never fatal; see
+    /// check_failures()).
     bool check_invariants = false;
     /// Stop after this time unit (0: run to the scenario's horizon). The schedule still plans
     /// for the whole horizon; "the end" of the run (final measure, time_units) is this unit.
@@ -85,14 +86,67 @@ struct DeformRunReport {
     double worst_min_edge_angle_deg = 180;
     std::size_t self_intersections = 0;  ///< summed over all measured time units
     std::size_t inverted = 0;            ///< summed over all measured time units
-    std::size_t invariant_failures = 0;  ///< updates after which check_invariants() failed
+    /// Updates after which check_invariants() failed (t = 0 counts as one, from
+    /// InitReport::invariant_failures).
+    std::size_t invariant_failures = 0;
     std::vector<std::string> first_invariant_failures;
-    /// Diametric balls holding a vertex after an update (with check_invariants): largest
-    /// count after one update, and the sum over updates (spec §9 P9; soft).
+    /// Diametric balls holding a vertex after an update (with check_invariants; t = 0 counts
+    /// as one): largest count after one update, and the sum over updates (spec §9 P9).
     std::size_t nonempty_balls_max = 0, nonempty_balls_total = 0;
+    std::size_t updates_with_nonempty_balls = 0;
+    /// "t=T: the diametric ball of triangle (a, b, c) holds ..." for the first 10 such updates.
+    std::vector<std::string> first_nonempty_balls;
     std::map<std::string, std::size_t> violations;  ///< by kind
+    /// The first kViolationExamples records of every kind (t = 0: initialisation), by time.
+    std::vector<ViolationRecord> violation_examples;
+    /// Rebuilds installed, and rebuilds undone because their result had another topology
+    /// than Tri(0) or the reconstruction failed (Violation::TopologyRollback).
+    std::size_t rebuilds = 0, rollbacks = 0;
+    std::size_t flip_refusals = 0;  ///< flips refused by the circumradius guard (spec §9 P9)
+    /// First time unit with a self-intersection / an inverted triangle (-1: none).
+    int first_self_intersection_t = -1, first_inverted_t = -1;
+    /// Tri(0): vertices and Euler characteristic (kept by every update).
+    std::size_t init_vertices = 0;
+    long long euler = 0;
+    /// Events to show even without --check, one line each with its time unit: every update
+    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger), every
+    /// rollback, and a Tri(0) built by decimating the input mesh (t = 0); at most
+    /// kMaxWarnings lines, then one line counting the rest.
+    std::vector<std::string> warnings;
     std::vector<DeformLogRow> log;
 };
+
+inline constexpr std::size_t kViolationExamples = 5;
+inline constexpr std::size_t kMaxWarnings = 100;
+
+/// How much `dynmesh deform --check` demands.
+enum class CheckLevel {
+    Off,
+    /// `--check`: the maintained mesh is a valid mesh of Sigma at every update: the invariants
+    /// of check_invariants() (needs DeformRunOptions::check_invariants; t = 0 included):
+    /// closed oriented manifold with Tri(0)'s Euler characteristic and components, dormant
+    /// lists, radius-edge <= 3, spacing >= R/3, dormant points within 5R/4; no
+    /// self-intersection and no inverted triangle at any measured time unit; no rebuild
+    /// rolled back (Violation::TopologyRollback).
+    Invariants,
+    /// `--check=strict`: also the paper's Delaunay property and model: no diametric ball
+    /// holding a vertex after any update (t = 0 included), and none of the monitors and
+    /// diagnostics the report lists (violations of any kind: step_too_short,
+    /// displacement_exceeds_lambda, edge_angle_below_90, normal_inverted,
+    /// circumradius_growth, refine_cap_hit, deletion_cap_hit, add_vertex_case, far_sample,
+    /// add_folded, remove_failed, non_empty_ball, rebuild, rollback, coarsened,
+    /// init_fallback).
+    Strict
+};
+[[nodiscard]] std::string_view to_string(CheckLevel level);
+/// "off", "invariants" (or "on", what a bare --check means) or "strict". 	hrow InvalidInput.
+[[nodiscard]] CheckLevel parse_check_level(std::string_view name);
+
+/// Every reason the run fails `level`, one line each naming the time unit ("t=12: ...") and
+/// the place (triangle or sample ids) where the report has it; empty when it passes (always
+/// for CheckLevel::Off). A kind with more records than the report keeps ends with a line
+/// counting the rest.
+[[nodiscard]] std::vector<std::string> check_failures(const DeformRunReport& report, CheckLevel level);
 
 /// Runs the scenario from t = 0 to its horizon.
 DeformRunReport run_deform(const Scenario& scenario, const DeformRunOptions& options = {});

@@ -168,10 +168,10 @@ struct Scenario {
     double length_scale = 0;
     /// The caller inserts and deletes samples to keep the density (plan_sample_edits).
     bool edits = false;
-    /// A closed triangulation of P(0) whose vertex i is the sample at pool point initial[i],
-    /// when one is known (a mesh file whose every vertex is an initial sample: the input mesh
-    /// itself). DeformingMesh then starts from it instead of reconstructing.
-    std::optional<SurfaceMesh> initial_mesh;
+    /// For a mesh file: the mesh as read (before subdivision), Sigma(0) itself; its vertex i
+    /// is pool point i. run_deform() passes it as InitialSurface::reference, so Tri(0) is the
+    /// restricted Delaunay triangulation of Vert(0) on it, with its topology.
+    std::optional<SurfaceMesh> input_mesh;
 
     [[nodiscard]] std::size_t pool_size() const { return normals0.size(); }
 };
@@ -233,10 +233,8 @@ struct ScenarioOptions {
 ///   min(2 pi/3, 2 L / (1.5 W)) (bend radius >= 1.5 W, so the inner side is compressed up to
 ///   3x and the outer stretched up to 1.67x); rotate = one turn about (1, 1, 1).
 /// \throw InvalidInput for an unknown name that is not an existing file (listing the valid
-///        names), an unreadable, open or non-manifold mesh or one with fewer than 100
-///        vertices, an unknown warp, a warp other than its own for an analytic scenario,
-///        samples < 100,
-///        steps < 1, pool_factor < 1, speed <= 0 or non-finite, or a sample too sparse to
+///        names), an unreadable, open or non-manifold mesh, an unknown warp, a warp other
+///        than its own for an analytic scenario, samples < 100, steps < 1, pool_factor < 1, speed <= 0 or non-finite, or a sample too sparse to
 ///        mesh the surface (the restricted Delaunay triangulation has the wrong topology).
 [[nodiscard]] Scenario make_scenario(const std::string& name, const ScenarioOptions& options = {});
 

@@ -66,6 +66,63 @@ struct RestrictedDelaunayResult {
     std::span<const Point3> samples, const ImplicitSurface& surface,
     const RestrictedDelaunayOptions& options = {});
 
+struct MeshRestrictedDelaunayOptions {
+    /// Delaunay triangulations computed at most (the first on the net alone, then one per
+    /// refinement round).
+    std::size_t max_rounds = 8;
+    /// Also refine where a facet's diametric ball holds a net point (so that the result
+    /// needs few diametric flips; the deforming mesh's Tri(0)).
+    bool refine_diametric_balls = false;
+    /// A sample added for a multiple hit or a diametric ball (not for the topology) keeps at
+    /// least this factor times the largest facet circumradius from the net (0: any).
+    double min_spacing_factor = 0;
+    /// Without a correct result after max_rounds: throw (true) or return report.correct =
+    /// false with report.defect_points (the mesh is then empty).
+    bool throw_on_failure = true;
+};
+
+struct MeshRestrictedDelaunayReport : RestrictedDelaunayReport {
+    std::size_t rounds = 0;     ///< Delaunay triangulations computed
+    std::size_t net = 0;        ///< size of the net given
+    std::size_t added = 0;      ///< samples the refinement rounds added to the net
+    /// In the result: restricted facets whose dual Voronoi edge meets the surface more than
+    /// once (left where no sample could be added near the hits).
+    std::size_t multi_hit_facets = 0;
+    /// In the result, with refine_diametric_balls: facets whose diametric ball holds a vertex.
+    std::size_t nonempty_balls = 0;
+    long long euler = 0;        ///< of the result, equal to the surface's
+    bool correct = false;       ///< false only with throw_on_failure = false
+    /// Without a correct result: where the last round failed (vertices at the defects).
+    std::vector<Point3> defect_points;
+};
+
+struct MeshRestrictedDelaunayResult {
+    SurfaceMesh mesh;
+    MeshRestrictedDelaunayReport report;
+};
+
+/// The restricted Delaunay triangulation of a net of samples with respect to a closed
+/// triangle mesh `surface` (spec deforming-mesh.md §10.5 B): for each facet of the Delaunay
+/// triangulation of the net, the dual Voronoi edge (segment, or outward ray cut beyond the
+/// surface's bounding box) is tested against the surface's triangles with CGAL's AABB tree
+/// (exact predicates); a facet is kept when it meets the surface and is oriented like the
+/// surface triangle it meets nearest the facet's centroid.
+///
+/// `samples` is the pool and `net` the indices of the initial vertices (each sample is
+/// expected on the surface). Refinement rounds, until the result is a closed oriented
+/// 2-manifold with the surface's Euler characteristic and number of components and no dual
+/// edge meets the surface twice: wherever a dual edge meets the surface more than once, and
+/// at every facet around a non-manifold edge or vertex, the pool sample nearest each hit
+/// joins the net. A correct result whose remaining multiple hits have no pool sample to add
+/// is returned (counted in multi_hit_facets). Vertices are the net samples used, in pool
+/// order (report.vertex_sample gives their pool indices); deterministic.
+/// 	hrow InvalidInput for an empty or out-of-range net, bad samples (as restricted_delaunay),
+///        a surface that is not a closed 2-manifold, or no correct result after max_rounds
+///        (naming a point of the region that failed).
+[[nodiscard]] MeshRestrictedDelaunayResult restricted_delaunay_on_mesh(
+    std::span<const Point3> samples, std::span<const std::uint32_t> net, const SurfaceMesh& surface,
+    const MeshRestrictedDelaunayOptions& options = {});
+
 /// restricted_delaunay(surface.sample_uniform(n, seed), surface): a closed mesh of the
 /// surface with n area-uniform random vertices (n must be large enough for the surface; e.g.
 /// 10,000 suffice for torus:5,3).

@@ -1,0 +1,131 @@
+// Diagnostics that must never be silent: a rebuild that would change the topology is rolled
+// back, a global flip that leaves a non-empty diametric ball says so, and an update that
+// coarsens the mesh is reported (spec §8.2, §9 P5).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/deform/run.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/shapes/analytic.hpp"
+#include "test_support.hpp"
+
+namespace dynmesh {
+namespace {
+
+std::size_t count_kind(const std::vector<ViolationRecord>& v, const std::string& kind) {
+    return static_cast<std::size_t>(std::count_if(
+        v.begin(), v.end(), [&](const ViolationRecord& r) { return std::string(to_string(r.kind)) == kind; }));
+}
+
+TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristic) {
+    // The bend of `dynmesh deform elephant.off` at 8x the default speed (steps 50): its
+    // emergency rebuild from the advancing front changed the Euler characteristic -4 -> -6
+    // at t = 7 and the run carried on. The first 16 time units reproduce it (rebuilds are
+    // attempted from t = 5 on; their exact times depend on rounding, so on the build).
+    ScenarioOptions so;
+    so.warp = "bend";
+    so.steps = 50;
+    Scenario s = make_scenario(test::shared_data("meshes/elephant.off").string(), so);
+    s.time_units = 16;
+    MeshCheckOptions co;
+    co.require_closed = true;
+    co.check_degenerate = false;
+    const long long euler = check_mesh(*s.input_mesh, co).euler;
+    ASSERT_EQ(euler, -4);
+    DeformRunOptions ro;
+    ro.measure_every = 0;
+    ro.measure.self_intersections = false;
+    ro.check_invariants = true;
+    std::vector<long long> seen;
+    ro.on_frame = [&](const DeformFrame& f) {
+        const MeshCheckReport mc = check_mesh(f.mesh->mesh(), co);
+        EXPECT_TRUE(mc.ok()) << "t = " << f.t << ": " << mc.summary();
+        seen.push_back(mc.euler);
+    };
+    const DeformRunReport r = run_deform(s, ro);
+    ASSERT_EQ(seen.size(), 17u);
+    for (std::size_t t = 0; t < seen.size(); ++t) EXPECT_EQ(seen[t], euler) << "t = " << t;
+    // The rebuild happened and was undone, and --check says so with the time unit.
+    ASSERT_TRUE(r.violations.count("rollback")) << "no rebuild was attempted: the reproduction is gone";
+    EXPECT_GE(r.violations.at("rollback"), 1u);
+    EXPECT_GE(r.rollbacks, 1u);
+    const auto lines = check_failures(r, CheckLevel::Invariants);
+    // (Which of the rebuilds comes first, one that fails to close or one with Euler
+    // characteristic -6, depends on rounding.)
+    const bool named = std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
+        return l.rfind("t=", 0) == 0 && l.find(": rollback: the rebuild from ") != std::string::npos;
+    });
+    EXPECT_TRUE(named);
+    EXPECT_FALSE(r.warnings.empty());
+}
+
+TEST(DeformMonitors, GlobalFlipReportsTheBallsItCannotEmpty) {
+    // A sphere squashed to 2 % of its height: the diametric balls of the top triangles reach
+    // the vertices of the bottom, which no flip can remove.
+    SurfaceMesh m = test::icosphere(3);
+    std::vector<Point3> pos;
+    for (Vertex v : m.vertices()) {
+        Point3& p = m.position(v);
+        p.z *= 0.02;
+        pos.push_back(p);
+    }
+    DeformParams params;
+    params.lambda = 1e-3;
+    params.h0 = 0.1;
+    params.init_refine = false;
+    InitialSurface init;
+    init.mesh = &m;
+    for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
+    const DeformingMesh dm(pos, params, init);
+    InvariantOptions io;
+    io.empty_balls_soft = true;
+    const InvariantReport inv = dm.check_invariants(io);
+    ASSERT_GT(inv.nonempty_balls, 0u);
+    ASSERT_EQ(count_kind(dm.violations(), "non_empty_ball"), 1u);  // one global flip at t = 0
+    const ViolationRecord& v = *std::find_if(dm.violations().begin(), dm.violations().end(),
+                                             [](const ViolationRecord& r) { return r.kind == Violation::NonEmptyBall; });
+    EXPECT_EQ(v.t, 0);
+    EXPECT_NE(v.detail.find(std::to_string(inv.nonempty_balls) + " diametric balls"), std::string::npos) << v.detail;
+    EXPECT_NE(v.detail.find("triangle ("), std::string::npos) << v.detail;
+    EXPECT_EQ(dm.init_report().nonempty_balls, inv.nonempty_balls);
+    // The check can be turned off (only a flip loop at its cap is then reported).
+    params.verify_balls = false;
+    const DeformingMesh quiet(pos, params, init);
+    EXPECT_EQ(count_kind(quiet.violations(), "non_empty_ball"), 0u);
+    EXPECT_EQ(quiet.init_report().nonempty_balls, inv.nonempty_balls);  // the t = 0 check still counts
+}
+
+TEST(DeformMonitors, DeletingACapCoarsensTheMeshAndSaysSo) {
+    // Deleting every sample of a cap leaves a hole that only large triangles can span: R
+    // grows far beyond 2x and Decimation coarsens the whole sphere.
+    const std::vector<Point3> P0 = Sphere(Point3{0, 0, 0}, 1.0).sample_uniform(4000, 41);
+    DeformParams params;
+    params.lambda = 1e-4;
+    params.h0 = 0.07;
+    const Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh dm(P0, params, {.surface = &sphere});
+    dm.advance(1, P0);
+    for (SampleId id = 0; id < P0.size(); ++id)
+        if (P0[id].z > 0.6) dm.queue_deletion(id);
+    const std::size_t before = dm.mesh().n_vertices();
+    const UpdateReport u = dm.update();
+    ASSERT_GT(u.R_after, 2 * u.R_before);
+    EXPECT_EQ(u.vertices_before, before);
+    ASSERT_EQ(count_kind(u.violations, "coarsened"), 1u);
+    const auto it = std::find_if(u.violations.begin(), u.violations.end(),
+                                 [](const ViolationRecord& r) { return r.kind == Violation::Coarsened; });
+    EXPECT_EQ(it->t, 1);
+    EXPECT_NE(it->detail.find("vertices " + std::to_string(before) + " -> " + std::to_string(u.vertices)),
+              std::string::npos)
+        << it->detail;
+    // An update that changes nothing is not reported.
+    dm.advance(2, P0);
+    EXPECT_EQ(count_kind(dm.update().violations, "coarsened"), 0u);
+}
+
+}  // namespace
+}  // namespace dynmesh
