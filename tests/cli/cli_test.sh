@@ -604,6 +604,27 @@ deform_mesh)
     run 0 "$bin" deform "$data/meshes/blobby.off" --warp twist --samples 3000 --steps 30 --report t.json --quiet
     [ -s "$data/meshes/eight.off" ] || fail "input gone"
     ;;
+deform_check)
+    # --check: the invariants at every update; --check=strict: also every ball and monitor.
+    run 0 "$bin" deform stretch --samples 1500 --steps 24 --check --report inv.json --quiet
+    [ "$(json_get inv.json "['check_level']")" = invariants ] || fail "bare --check is not the invariants level"
+    [ "$(json_get inv.json "['check_failures'].__len__()")" = 0 ] || fail "check_failures listed at exit 0"
+    run 1 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --check=strict --report strict.json --quiet
+    [ "$(json_get strict.json "['check_level']")" = strict ] || fail "check_level"
+    python3 - <<'PY' || fail "--check=strict does not list every monitor it fails on"
+import json
+d = json.load(open("strict.json"))
+kinds = set(d["violations"])
+assert kinds and d["check_failures"], d
+text = " ".join(d["check_failures"])
+for k in kinds:
+    assert k in text, (k, d["check_failures"])
+assert all(line.startswith("t=") or "updates" in line or "more" in line for line in d["check_failures"]), d["check_failures"]
+PY
+    grep -q "check failed" err.txt || fail "no one-line check failure: $(cat err.txt)"
+    [ "$(grep -c 'error' err.txt)" = 0 ] || fail "a failed check is reported as an error"
+    run 2 "$bin" deform stretch --check=sometimes
+    ;;
 deform_bad)
     expect_error() {  # expect_error CODE NEEDLE ARGS...
         local code=$1 needle=$2; shift 2

@@ -139,7 +139,7 @@ enum class CheckLevel {
     Strict
 };
 [[nodiscard]] std::string_view to_string(CheckLevel level);
-/// "off", "invariants" (or "on", what a bare --check means) or "strict". 	hrow InvalidInput.
+/// "off", "invariants" (or "on", what a bare --check means) or "strict". \throw InvalidInput.
 [[nodiscard]] CheckLevel parse_check_level(std::string_view name);
 
 /// Every reason the run fails `level`, one line each naming the time unit ("t=12: ...") and

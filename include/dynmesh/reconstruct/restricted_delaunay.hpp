@@ -116,7 +116,7 @@ struct MeshRestrictedDelaunayResult {
 /// joins the net. A correct result whose remaining multiple hits have no pool sample to add
 /// is returned (counted in multi_hit_facets). Vertices are the net samples used, in pool
 /// order (report.vertex_sample gives their pool indices); deterministic.
-/// 	hrow InvalidInput for an empty or out-of-range net, bad samples (as restricted_delaunay),
+/// \throw InvalidInput for an empty or out-of-range net, bad samples (as restricted_delaunay),
 ///        a surface that is not a closed 2-manifold, or no correct result after max_rounds
 ///        (naming a point of the region that failed).
 [[nodiscard]] MeshRestrictedDelaunayResult restricted_delaunay_on_mesh(
