@@ -82,7 +82,7 @@ struct ExperimentArgs {
     CommonOptions common;
     std::size_t samples = 10000;
     std::size_t seeds = 5;
-    std::vector<std::string> surfaces = {"sphere", "torus:5,3"};
+    std::vector<std::string> surfaces = {"sphere", "torus:5,3", "boomerang"};
     std::vector<std::string> meshes;
     std::string out_dir;
     std::string criterion = "angle";

@@ -320,7 +320,10 @@ for c in d["cases"]:
     assert w["dihedral_dev_max_deg"] <= 60.0 + 1e-9, c
     assert w["dihedral_dev_mean_deg"] >= 2 * s["dihedral_dev_mean_deg"], c
     assert s["dihedral_dev_mean_deg"] <= 1.05 * i["dihedral_dev_mean_deg"], c
-    assert s["normal_dev_mean_deg"] <= 1.05 * i["normal_dev_mean_deg"], c
+    if "normal_dev_mean_deg" in i:  # analytic surfaces; the boomerang snapshot has no true normals
+        assert s["normal_dev_mean_deg"] <= 1.05 * i["normal_dev_mean_deg"], c
+names = [c["name"] for c in d["cases"]]
+assert any("boomerang" in n for n in names), names  # Table 3 is part of the default experiment
 PY
     ls exp/*_histograms.csv >/dev/null || fail "no histogram CSV"
     ;;
