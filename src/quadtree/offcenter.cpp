@@ -553,6 +553,19 @@ double offcenter_min_angle_deg(double rho) {
     return std::asin(1.0 / (2.0 * rho)) * 180.0 / std::numbers::pi;
 }
 
+double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
+                                        const OffCenterOptions& options) {
+    double shortest2 = std::numeric_limits<double>::infinity();
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Vec2 d = mesh.points[t[k]] - mesh.points[t[(k + 1) % 3]];
+            shortest2 = std::min(shortest2, dot(d, d));
+        }
+    const detail::OffCenterKernel kernel(mesh.origin, mesh.width, options);
+    const double slack = std::isfinite(shortest2) ? kernel.slack(shortest2) : 0.0;
+    return offcenter_min_angle_deg(options.rho) - slack * 180.0 / std::numbers::pi;
+}
+
 OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree, const OffCenterOptions& options) {
     if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
         throw InvalidInput("offcenter_mesh: rho = " + std::to_string(options.rho) +

@@ -41,6 +41,14 @@
 ///   * The output Delaunay triangulation (CGAL Delaunay_triangulation_2) is updated by removing
 ///     and inserting the symmetric difference of the vertex sets; mesh() then canonicalises
 ///     degenerate cells exactly as offcenter_mesh() does (detail::finish_offcenter_mesh).
+///   * The live mesh (current_mesh(), live_mesh.hpp) holds the same canonical triangles with
+///     stable ids and is updated locally: the Delaunay cells (maximal sets of triangles with
+///     one empty circumcircle) incident to a vertex that was inserted or removed, or to one of
+///     its neighbours at that moment, are re-derived from the triangulation, each as a fan from
+///     its smallest vertex in mesh()'s index order (inputs by snapped coordinates, then Steiner
+///     points by (x, y)); cells whose ring did not change keep their triangles and ids. Every
+///     cell created or destroyed by the update has such a vertex, so the rest is unchanged.
+///     last_change() lists the triangles and vertices removed and added.
 ///
 /// Deviations and limits (see also the .cpp):
 ///   * The static algorithm was made canonical where it used to depend on CGAL's choice among
@@ -79,6 +87,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/quadtree/live_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -89,11 +98,9 @@ struct OffCenterUpdateReport {
     std::size_t steiner_added = 0;      // Steiner points (incl. boundary midpoints) now present
                                         // that were not before
     std::size_t steiner_removed = 0;    // ... present before and not now
-    std::size_t triangles_added = 0;    // Delaunay faces created by the incremental CGAL update,
-                                        // from vertex degrees (inserting a degree-d vertex
-                                        // creates d faces and destroys d − 2; removing one the
-                                        // reverse; approximate for box-boundary vertices)
-    std::size_t triangles_removed = 0;  // Delaunay faces destroyed by it (same counting)
+    std::size_t triangles_added = 0;    // triangles of the canonical mesh that are new (exact:
+                                        // last_change().added_simplices.size())
+    std::size_t triangles_removed = 0;  // ... that disappeared (last_change().removed_simplices)
     std::size_t evaluations = 0;        // creation and processing evaluations (re-)run
     std::size_t rounds_visited = 0;     // distinct rounds (class, index) of those evaluations
     std::size_t queries = 0;            // best-first searches made by those evaluations
@@ -118,7 +125,8 @@ public:
                                                  const OffCenterOptions& options);
 
     /// Inserts p, with DynQuadtree<2>::insert's validation (snapping, middle third, duplicates,
-    /// NaN). On any result other than Inserted nothing changes (last_update() included).
+    /// NaN, resolution). On any result other than Inserted nothing changes (last_update() and
+    /// last_change() included).
     /// \throw InternalError if more than options.max_steiner Steiner points would be needed
     ///        (the object is then unusable).
     [[nodiscard]] InsertResult insert(const Vec2& p);
@@ -135,6 +143,12 @@ public:
     [[nodiscard]] std::size_t vertex_count() const;
     /// The work of the last successful insert or erase.
     [[nodiscard]] const OffCenterUpdateReport& last_update() const;
+    /// The current mesh with stable ids (live_mesh.hpp), maintained by every update: the
+    /// triangles of mesh() in slot order. O(1).
+    [[nodiscard]] const LiveMesh<2>& current_mesh() const;
+    /// What the last successful insert or erase changed in current_mesh(); empty after
+    /// construction and build().
+    [[nodiscard]] const MeshDelta<2>& last_change() const;
 
     /// Every violated invariant, one message each; empty when the state is valid. Compares the
     /// stored trace (vertices with stamps and kinds, candidates, outcomes), the triangulation and

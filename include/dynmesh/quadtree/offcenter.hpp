@@ -114,6 +114,13 @@ struct OffCenterMesh2 {
 
 /// The minimum angle (degrees) that radius-edge bound ρ guarantees: arcsin(1/(2ρ)).
 [[nodiscard]] double offcenter_min_angle_deg(double rho);
+/// The smallest angle (degrees) the algorithm promises for this mesh: offcenter_min_angle_deg(ρ)
+/// minus the closed-leaf slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ of its shortest edge ℓ (file comment,
+/// "Closed leaf"), the tolerance of the bound for off-centers computed in double precision. A
+/// checker of mesh.min_angle_deg should compare against this, not against the exact bound:
+/// points a few thousand ulps apart make δ visible.
+[[nodiscard]] double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
+                                                      const OffCenterOptions& options);
 
 namespace detail {
 
