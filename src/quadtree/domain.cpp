@@ -4,10 +4,10 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "dynmesh/error.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 
@@ -15,13 +15,7 @@ namespace {
 
 template <int D>
 std::string point_text(std::size_t i, const PointD<D>& p) {
-    std::string s = "auto_domain: point " + std::to_string(i) + " (";
-    for (int d = 0; d < D; ++d) {
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", p[static_cast<std::size_t>(d)]);
-        s += (d ? ", " : "") + std::string(buf);
-    }
-    return s + ")";
+    return "auto_domain: point " + std::to_string(i) + " " + detail::format_point<D>(p);
 }
 
 }  // namespace

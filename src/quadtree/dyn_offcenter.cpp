@@ -24,6 +24,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/quadtree/live_mesh.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 namespace {
@@ -476,6 +477,7 @@ struct DynOffCenterMesh2::Impl {
         bool blocked = false;             // a visible vertex on the open segment
         std::vector<std::uint32_t> ties;  // the minimisers (exactly cocircular)
         double h = kInf;                  // their offset (floating point)
+        double h_err = 0;                 // a bound on the rounding error of h
     };
 
     /// The visible vertices x strictly on side `cw` of a -> b minimising the circle through
@@ -493,8 +495,10 @@ struct DynOffCenterMesh2::Impl {
         const Vec2 n{perp.x / len, perp.y / len};
         const Vec2 hm{0.5 * d.x, 0.5 * d.y};  // the midpoint relative to a (exact)
         const Sign want = cw ? Sign::Negative : Sign::Positive;
+        // Candidates beyond it cannot be minimisers: the current best's offset plus its
+        // rounding error (or hmax), with a relative margin.
         auto limit = [&]() {
-            const double h = std::min(hmax, res.h);
+            const double h = std::min(hmax, res.h + res.h_err);
             return std::isfinite(h) ? h + 1e-9 * (std::fabs(h) + len) : h;
         };
         auto lower = [&](const PNode& nd) {
@@ -566,13 +570,17 @@ struct DynOffCenterMesh2::Impl {
                         const double v = std::max(dot(x, n), std::numeric_limits<double>::min());
                         const double xx = dot(x, x);
                         const double h = (xx - 0.25 * len2) / (2 * v);
-                        // Skip only when h surely exceeds the limit (error of the numerator
-                        // and of v).
-                        const double h_err = 16 * kEps * ((xx + len2) / (2 * v) + std::fabs(h));
+                        // Skip only when h surely exceeds the limit: the error of the
+                        // numerator, and the relative error of v (large for x nearly on the
+                        // line of the pair).
+                        const double h_err =
+                            16 * kEps *
+                            ((xx + len2) / (2 * v) + std::fabs(h) * (1 + std::sqrt(xx) / v));
                         if (h - h_err > limit()) continue;
                         if (res.ties.empty()) {
                             res.ties = {id};
                             res.h = h;
+                            res.h_err = h_err;
                             continue;
                         }
                         const Vec2& bp = verts[res.ties.front()].pos;
@@ -580,8 +588,10 @@ struct DynOffCenterMesh2::Impl {
                         if (s == Sign::Positive) {
                             res.ties = {id};
                             res.h = h;
+                            res.h_err = h_err;
                         } else if (s == Sign::Zero) {
                             res.ties.push_back(id);
+                            res.h_err = std::max(res.h_err, h_err);
                         }
                     }
                 } else {
@@ -1445,6 +1455,20 @@ struct DynOffCenterMesh2::Impl {
         }
     }
 
+    /// The input closer to p than offcenter_min_separation() (other than one at p itself),
+    /// or kNone. A check, not work of the update: report.queries is left alone.
+    [[nodiscard]] std::uint32_t too_close(const Vec2& p) {
+        Visibility vis;
+        vis.bound.phase = 1;  // exclusive: the inputs and the box corners (phase 0)
+        const std::size_t queries = report.queries;
+        const std::uint32_t q = nearest(p, vis);
+        report.queries = queries;
+        if (q == kNone || verts[q].kind != VKind::Input) return kNone;
+        const Vec2 d = verts[q].pos - p;
+        const double sep = kernel.min_separation();
+        return dot(d, d) < sep * sep ? q : kNone;
+    }
+
     void add_input(const DynQuadtree<2>::GridPoint& g, const Vec2& p) {
         inputs[g] = add_vertex(p, Stamp{}, VKind::Input, -1);
         verts[inputs[g]].grid = g;
@@ -1454,19 +1478,11 @@ struct DynOffCenterMesh2::Impl {
 
 // ------------------------------------------------------------------------------------------
 
-namespace {
-void check_rho(const OffCenterOptions& options) {
-    if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
-        throw InvalidInput("DynOffCenterMesh2: rho = " + std::to_string(options.rho) +
-                           " must be finite and > sqrt(2)");
-}
-}  // namespace
-
 DynOffCenterMesh2::DynOffCenterMesh2(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 DynOffCenterMesh2::DynOffCenterMesh2(const QuadtreeOptions<2>& domain,
                                      const OffCenterOptions& options) {
-    check_rho(options);
+    detail::check_rho(options, "DynOffCenterMesh2");
     impl_ = std::make_unique<Impl>(domain, options);
     impl_->begin_update();
     impl_->init_box();
@@ -1483,13 +1499,20 @@ DynOffCenterMesh2& DynOffCenterMesh2::operator=(DynOffCenterMesh2&&) noexcept = 
 DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
                                            const QuadtreeOptions<2>& domain,
                                            const OffCenterOptions& options) {
-    check_rho(options);
+    detail::check_rho(options, "DynOffCenterMesh2");
     DynQuadtree<2> tree = DynQuadtree<2>::build(points, domain);  // validates, names bad points
     auto impl = std::make_unique<Impl>(domain, options);
     impl->tree = std::move(tree);
     impl->begin_update();
     impl->init_box();
     for (const auto& [g, p] : impl->tree.points()) impl->add_input(g, p);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (const std::uint32_t q = impl->too_close(points[i]); q != kNone)
+            throw InvalidInput("DynOffCenterMesh2::build: point " + std::to_string(i) + " " +
+                               detail::format_point<2>(points[i]) + " is closer to the point " +
+                               detail::format_point<2>(impl->verts[q].pos) + " than the " +
+                               detail::format_double(impl->kernel.min_separation()) +
+                               " the off-center refinement resolves (offcenter_min_separation)");
     impl->propagate();
     impl->end_update();
     impl->report = OffCenterUpdateReport{};
@@ -1499,6 +1522,8 @@ DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
 
 InsertResult DynOffCenterMesh2::insert(const Vec2& p) {
     Impl& m = *impl_;
+    if (m.tree.is_admissible(p) && !m.tree.contains(p) && m.too_close(p) != kNone)
+        return InsertResult::BeyondPrecision;
     const InsertResult r = m.tree.insert(p);
     if (r != InsertResult::Inserted) return r;
     m.begin_update();

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "dynmesh/error.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 
@@ -62,23 +63,8 @@ const std::vector<std::array<int, D>>& block_k(int k) {
     return k == 2 ? v2 : v1;
 }
 
-std::string fmt_double(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
-template <int D>
-std::string fmt_point(const PointD<D>& p) {
-    std::string s = "(";
-    for (int i = 0; i < D; ++i) {
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", p[static_cast<std::size_t>(i)]);
-        if (i) s += ", ";
-        s += buf;
-    }
-    return s + ")";
-}
+using detail::format_double;
+using detail::format_point;
 
 }  // namespace
 
@@ -144,16 +130,16 @@ DynQuadtree<D>::DynQuadtree(const QuadtreeOptions<D>& options) : options_(option
     for (int i = 0; i < D; ++i)
         DYNMESH_CHECK(
             std::isfinite(options.origin[static_cast<std::size_t>(i)]),
-            "DynQuadtree: domain origin " + fmt_point<D>(options.origin) + " is not finite");
+            "DynQuadtree: domain origin " + format_point<D>(options.origin) + " is not finite");
     DYNMESH_CHECK(
         std::isfinite(options.width) && options.width > 0,
-        "DynQuadtree: domain width " + fmt_double(options.width) + " must be finite and > 0");
+        "DynQuadtree: domain width " + format_double(options.width) + " must be finite and > 0");
     for (int i = 0; i < D; ++i)
         DYNMESH_CHECK(std::isfinite(options.origin[static_cast<std::size_t>(i)] + options.width),
-                      "DynQuadtree: the domain box at " + fmt_point<D>(options.origin) +
-                          " of width " + fmt_double(options.width) + " overflows");
+                      "DynQuadtree: the domain box at " + format_point<D>(options.origin) +
+                          " of width " + format_double(options.width) + " overflows");
     DYNMESH_CHECK(std::ldexp(options.width, -kLevels) >= DBL_MIN,
-                  "DynQuadtree: domain width " + fmt_double(options.width) +
+                  "DynQuadtree: domain width " + format_double(options.width) +
                       " is too small for the quadtree grid (needs W >= 2^52 * DBL_MIN)");
     int e = 0;
     dyadic_ = std::frexp(options.width, &e) == 0.5;
@@ -222,7 +208,7 @@ template <int D>
 typename DynQuadtree<D>::GridPoint DynQuadtree<D>::grid_point(const Point& p) const {
     GridPoint g;
     DYNMESH_CHECK(snap(p, g) == InsertResult::Inserted,
-                  "DynQuadtree::grid_point: point " + fmt_point<D>(p) +
+                  "DynQuadtree::grid_point: point " + format_point<D>(p) +
                       " is not finite or not in the middle third of the domain");
     return g;
 }
@@ -556,14 +542,14 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
             const InsertResult r = tree.snap(points[i], g);
             DYNMESH_CHECK(r != InsertResult::NotFinite,
                           "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              fmt_point<D>(points[i]) + " is not finite");
+                              format_point<D>(points[i]) + " is not finite");
             DYNMESH_CHECK(r != InsertResult::OutsideDomain,
                           "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              fmt_point<D>(points[i]) +
+                              format_point<D>(points[i]) +
                               " is outside the middle third of the domain");
             const auto [it, fresh] = seen.emplace(cell_of(g, 0), i);
             DYNMESH_CHECK(fresh, "DynQuadtree::build: point " + std::to_string(i) + " " +
-                                     fmt_point<D>(points[i]) + " duplicates point " +
+                                     format_point<D>(points[i]) + " duplicates point " +
                                      std::to_string(it->second));
             entries[i] = {g, points[i]};
         }
@@ -700,11 +686,11 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         }
         throw InvalidInput(
             "DynQuadtree::build: point " + std::to_string(best) + " " +
-            fmt_point<D>(points[best]) +
+            format_point<D>(points[best]) +
             " is too close to other points for double precision at its coordinates: its tree "
             "needs a cell of size " +
-            fmt_double(std::ldexp(options.width, bad->level - kLevels)) + " at " +
-            fmt_point<D>(corner) + ", below the coordinate resolution there" +
+            format_double(std::ldexp(options.width, bad->level - kLevels)) + " at " +
+            format_point<D>(corner) + ", below the coordinate resolution there" +
             (tree.dyadic() ? "" : " (a dyadic domain, e.g. auto_domain(), resolves finer)"));
     }
     return tree;

@@ -151,6 +151,7 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
                 present.push_back(p);
             } else {
                 ASSERT_EQ(r, InsertResult::Duplicate) << what;
+                continue;  // nothing changed: last_change() is still the previous update's
             }
         } else {
             const std::size_t k = rng.below(present.size());
@@ -303,22 +304,14 @@ double mean_offcenter_work(std::size_t n) {
     std::vector<Vec2> pts, queries;
     testing_quadtree::fixed_density_points<2>(n, 500, 1.0 / 12, 60, 17, pts, queries);
     DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, {}, {.rho = 1.5});
-    double work = 0;
-    std::size_t updates = 0;
-    const auto add = [&] {
-        const OffCenterUpdateReport& r = dyn.last_update();
-        work += static_cast<double>(r.evaluations + r.queries + r.triangles_added +
-                                    r.triangles_removed);
-        ++updates;
-    };
-    for (const Vec2& q : queries) {
-        if (dyn.insert(q) != InsertResult::Inserted) continue;
-        add();
-        EXPECT_EQ(dyn.erase(q), EraseResult::Erased);
-        add();
-    }
-    EXPECT_GT(updates, 100u);
-    return work / static_cast<double>(updates);
+    return testing_quadtree::mean_update_work(
+        dyn, queries,
+        [](const DynOffCenterMesh2& m) {
+            const OffCenterUpdateReport& r = m.last_update();
+            return static_cast<double>(r.evaluations + r.queries + r.triangles_added +
+                                       r.triangles_removed);
+        },
+        100);
 }
 
 TEST(DynOffCenter, WorkPerUpdateDoesNotGrowWithN) {
@@ -328,45 +321,51 @@ TEST(DynOffCenter, WorkPerUpdateDoesNotGrowWithN) {
     EXPECT_LT(w16, 1.3 * w1) << "n = 500: " << w1 << ", n = 8000: " << w16;
 }
 
-/// Points a few dozen ulps apart far from the origin, on dyadic boxes around them (where the
-/// lattice is exact, so the tree accepts them): the searches used to take the midpoint of a
-/// pair in absolute coordinates, whose rounding (an ulp of the coordinates) is a large part of
-/// such a pair, and the star walk of a creation evaluation did not close.
-TEST(DynOffCenter, PointsAFewUlpsApartFarFromTheOrigin) {
-    struct Layout {
-        Vec2 at, step;
-    };
-    const Layout layouts[] = {{{100, 70}, {1e-12, 1e-12}},    // a diagonal, ~70 ulps apart
-                              {{100, 70}, {0, 1e-12}},        // a vertical line
-                              {{0.5, 0.35}, {0, 3e-15}},      // ~27 ulps apart
-                              {{-3, -2.1}, {1e-14, 1e-14}},   // ~20 ulps apart
-                              {{1, 0.7}, {1e-14, 0.5e-14}}};
-    for (const Layout& l : layouts) {
-        std::vector<Vec2> pts;
-        for (int i = 0; i < 60; ++i) pts.push_back(l.at + static_cast<double>(i) * l.step);
-        const QuadtreeOptions<2> box = auto_domain<2>(pts);
-        for (double rho : {2.0, 1.5}) {
-            const std::string what = "at (" + std::to_string(l.at.x) + ", " +
-                                     std::to_string(l.at.y) + ") rho " + std::to_string(rho);
-            DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, box, {.rho = rho});
-            EXPECT_TRUE(check_offcenter_mesh(dyn.mesh()).empty()) << what;
-            // And dynamically: erase and re-insert a few points, against the oracle.
-            std::vector<Vec2> present = pts;
-            for (std::size_t k = 3; k < pts.size(); k += 17) {
-                ASSERT_EQ(dyn.erase(pts[k]), EraseResult::Erased) << what;
-                present.erase(std::find(present.begin(), present.end(), pts[k]));
-                expect_matches_oracle(dyn, present, what + " erase");
-                ASSERT_EQ(dyn.insert(pts[k]), InsertResult::Inserted) << what;
-                present.push_back(pts[k]);
+/// Points 10^3 .. 10^6 ulps apart (of their coordinates) on a line, a diagonal, a small grid
+/// or a circle, near 0.5 and 1000, on their automatic (dyadic) box: the dynamic mesh
+/// equals the oracle after the build and after erasing and re-inserting points. The searches
+/// used to offset candidates from the pair's midpoint rounded in absolute coordinates (an ulp
+/// of the coordinates, up to 1e-3 of such a pair, against tolerances of 1e-9 of it): they
+/// missed Delaunay neighbours, so the trace differed from the static run (and, a few dozen
+/// ulps apart, the star walk of a creation evaluation did not close).
+TEST(DynOffCenter, ClosePointsFarFromTheOriginMatchTheOracle) {
+    for (double o : {0.5, 1000.0})
+        for (double ratio : {3.2e3, 1e5, 1e6})
+            for (int layout = 0; layout < 5; ++layout) {
+                const double ulp = std::nextafter(std::fabs(o), INFINITY) - std::fabs(o);
+                const double s = ratio * ulp;
+                std::vector<Vec2> pts;
+                for (int i = 0; i < 60; ++i) {
+                    const double a = 0.1047 * i;
+                    const Vec2 offsets[] = {{i * s, 0},
+                                            {0, i * s},
+                                            {i * s, i * s},
+                                            {(i % 8) * s, (i / 8) * s},
+                                            {10 * s * std::cos(a), 10 * s * std::sin(a)}};
+                    pts.push_back(Vec2{o, 0.7 * o} + offsets[layout]);
+                }
+                const QuadtreeOptions<2> box = auto_domain<2>(pts);
+                {
+                    const double rho = layout % 2 ? 2.0 : 1.5;
+                    const std::string what = "o " + std::to_string(o) + " ratio " +
+                                             std::to_string(ratio) + " layout " +
+                                             std::to_string(layout) + " rho " + std::to_string(rho);
+                    DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, box, {.rho = rho});
+                    expect_matches_oracle(dyn, pts, what + " build");
+                    for (std::size_t k = 3; k < pts.size(); k += 7) {
+                        ASSERT_EQ(dyn.erase(pts[k]), EraseResult::Erased) << what;
+                        ASSERT_EQ(dyn.insert(pts[k]), InsertResult::Inserted) << what;
+                    }
+                    expect_matches_oracle(dyn, pts, what);
+                    expect_quality(dyn, what);
+                    if (::testing::Test::HasFailure()) return;
+                }
             }
-            expect_matches_oracle(dyn, present, what);
-            expect_quality(dyn, what);
-        }
-    }
 }
 
-/// On a non-dyadic box the same spacing is beyond the rounded lattice: build() refuses it
-/// naming a point and insert() refuses it without a change.
+/// Inputs closer than the tree's resolution (a non-dyadic box) or than
+/// offcenter_min_separation() (any box) are refused: build() and offcenter_mesh() name them,
+/// insert() returns BeyondPrecision without a change.
 TEST(DynOffCenter, RefusesPointsBeyondPrecision) {
     const QuadtreeOptions<2> box{.origin = {99.9, 69.9}, .width = 0.24};  // not dyadic
     EXPECT_THROW((void)DynOffCenterMesh2::build(std::vector<Vec2>{{100, 70}, {100 + 1e-12, 70}},
@@ -376,10 +375,34 @@ TEST(DynOffCenter, RefusesPointsBeyondPrecision) {
         std::vector<Vec2>{{100, 70}, {100.01, 70.02}}, box, {.rho = 2});
     const OffCenterMesh2 before = dyn.mesh();
     const std::size_t changed = dyn.last_change().added_simplices.size();
+    const std::size_t evaluations = dyn.last_update().evaluations;
     EXPECT_EQ(dyn.insert({100 + 1e-12, 70}), InsertResult::BeyondPrecision);
+    // On the unit box (dyadic) the tree resolves points a quantum apart, but the refinement
+    // needs offcenter_min_separation() (about 8e-14 at rho = 1.5).
+    const double sep = offcenter_min_separation({}, {.rho = 1.5});
+    EXPECT_GT(sep, 1e-14);
+    EXPECT_LT(sep, 1e-12);
+    DynOffCenterMesh2 unit = DynOffCenterMesh2::build(
+        std::vector<Vec2>{{0.5, 0.5}, {0.4, 0.45}}, {}, {.rho = 1.5});
+    const OffCenterMesh2 unit_before = unit.mesh();
+    EXPECT_EQ(unit.insert({0.5 + 0.5 * sep, 0.5}), InsertResult::BeyondPrecision);
+    EXPECT_EQ(unit.insert({0.5, 0.5 + 1e-17}), InsertResult::Duplicate);  // snaps to (0.5, 0.5)
+    EXPECT_EQ(unit.mesh().points, unit_before.points);
+    EXPECT_TRUE(unit.last_change().empty());  // as after build(): the refusals changed nothing
+    EXPECT_THROW((void)DynOffCenterMesh2::build(
+                     std::vector<Vec2>{{0.5, 0.5}, {0.5 + 0.5 * sep, 0.5}}, {}, {.rho = 1.5}),
+                 InvalidInput);
+    EXPECT_THROW((void)offcenter_mesh(DynQuadtree<2>::build(std::vector<Vec2>{
+                                          {0.5, 0.5}, {0.5, 0.5 + 0.5 * sep}}),
+                                      {.rho = 1.5}),
+                 InvalidInput);
+    EXPECT_EQ(unit.insert({0.5 + 2 * sep, 0.5}), InsertResult::Inserted);
+    EXPECT_TRUE(unit.check_invariants().empty()) << joined(unit.check_invariants());
+    // Nothing changed in the refused updates of `dyn`.
     EXPECT_EQ(dyn.mesh().points, before.points);
     EXPECT_EQ(dyn.mesh().triangles, before.triangles);
     EXPECT_EQ(dyn.last_change().added_simplices.size(), changed);
+    EXPECT_EQ(dyn.last_update().evaluations, evaluations);
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
 }
 

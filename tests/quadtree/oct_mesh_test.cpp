@@ -164,6 +164,16 @@ TEST(OctMesh, InsertionOrderDoesNotMatter) {
     EXPECT_TRUE(a == oct_mesh(tree));
 }
 
+/// As QuadMesh.CheckerMeasuresTheBoxTheCornersSpan, for the volume.
+TEST(OctMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<3> o{.origin = {0.5, 0.25, 0.75}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);
+    const std::vector<Vec3> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9, 0.75 + 1.4e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9, 0.75 + 1.8e-9}};
+    const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(pts, o));
+    EXPECT_TRUE(check_oct_mesh(mesh).empty()) << joined(check_oct_mesh(mesh));
+}
+
 TEST(OctMesh, CheckerFindsBrokenMeshes) {
     const std::vector<Vec3> pts = {{0.45, 0.5, 0.5}, {0.55, 0.52, 0.49}};
     const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(pts));

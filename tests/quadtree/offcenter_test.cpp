@@ -170,6 +170,17 @@ TEST(OffCenterMesh, HistoryIndependent) {
     }
 }
 
+/// As QuadMesh.CheckerMeasuresTheBoxTheCornersSpan, for the off-center mesh's box.
+TEST(OffCenterMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<2> o{.origin = {0.5, 0.25}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);
+    const std::vector<Vec2> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9},
+                                {0.5 + 1.5e-9, 0.25 + 1.9e-9}};
+    const OffCenterMesh2 mesh = offcenter_mesh(DynQuadtree<2>::build(pts, o), {.rho = 1.5});
+    EXPECT_TRUE(check_offcenter_mesh(mesh).empty()) << joined(check_offcenter_mesh(mesh));
+}
+
 TEST(OffCenterMesh, RejectsBadRho) {
     const auto tree = DynQuadtree<2>::build(uniform_points(10, 3));
     const double bad[] = {std::sqrt(2.0), 1.0, 0.5, -2.0, 0.0,

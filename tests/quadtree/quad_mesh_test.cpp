@@ -138,6 +138,18 @@ TEST(QuadMesh, HistoryIndependentAfterInsertsAndErases) {
     }
 }
 
+/// A box of width 3e-9 at (0.5, 0.25) (not dyadic): its far corner origin + W rounds, by up to
+/// 4e-8 of W. The checker measures the box the mesh's corners span, not W².
+TEST(QuadMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<2> o{.origin = {0.5, 0.25}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);  // the premise: W rounds there
+    const std::vector<Vec2> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9},
+                                {0.5 + 1.5e-9, 0.25 + 1.9e-9}};
+    const QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(pts, o));
+    EXPECT_TRUE(check_quad_mesh(mesh).empty()) << joined(check_quad_mesh(mesh));
+}
+
 TEST(QuadMesh, CheckerFindsBrokenMeshes) {
     const std::vector<Vec2> pts = {{0.45, 0.5}, {0.55, 0.52}};
     QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(pts));

@@ -207,4 +207,22 @@ void fixed_density_points(std::size_t n, std::size_t n0, double side0, std::size
     for (std::size_t i = 0; i < queries; ++i) query_points.push_back(draw(qrng, side0 / 2));
 }
 
+/// The mean of work(engine) over the updates of inserting each query point and erasing it
+/// again (points the engine refuses are skipped); at least `min_updates` updates must happen.
+template <class Engine, class Points, class Work>
+double mean_update_work(Engine& engine, const Points& queries, Work&& work,
+                        std::size_t min_updates) {
+    double total = 0;
+    std::size_t updates = 0;
+    for (const auto& q : queries) {
+        if (engine.insert(q) != InsertResult::Inserted) continue;
+        total += work(engine);
+        EXPECT_EQ(engine.erase(q), EraseResult::Erased);
+        total += work(engine);
+        updates += 2;
+    }
+    EXPECT_GE(updates, min_updates);
+    return total / static_cast<double>(std::max<std::size_t>(updates, 1));
+}
+
 }  // namespace dynmesh::testing_quadtree

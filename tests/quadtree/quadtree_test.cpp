@@ -545,22 +545,14 @@ double mean_tree_work(std::size_t n, std::size_t n0, double side0, QuadtreeMode 
     QuadtreeOptions<D> options;
     options.mode = mode;
     Tree<D> t = Tree<D>::build(pts, options);
-    double work = 0;
-    std::size_t updates = 0;
-    const auto add = [&] {
-        const auto& r = t.last_update();
-        work += static_cast<double>(r.support_updates + r.crowding_changes + r.split.size() +
-                                    r.merged.size());
-        ++updates;
-    };
-    for (const auto& q : queries) {
-        if (t.insert(q) != InsertResult::Inserted) continue;
-        add();
-        EXPECT_EQ(t.erase(q), EraseResult::Erased);
-        add();
-    }
-    EXPECT_GT(updates, 400u);
-    return work / static_cast<double>(updates);
+    return mean_update_work(
+        t, queries,
+        [](const Tree<D>& tree) {
+            const auto& r = tree.last_update();
+            return static_cast<double>(r.support_updates + r.crowding_changes + r.split.size() +
+                                       r.merged.size());
+        },
+        400);
 }
 
 TEST(DynQuadtree, WorkPerUpdateDoesNotGrowWithN2D) {

@@ -102,8 +102,9 @@ public:
     [[nodiscard]] std::string canonical_dump() const;
     /// Every violated invariant: the tree's (check_invariants), one stored code per leaf and
     /// no other, every stored code equal to its recomputation, the live mesh (vertex use
-    /// counts, one vertex per lattice position, its simplices equal to mesh()'s as a set).
-    /// Empty when valid. O(size log size).
+    /// counts, one vertex per lattice position, each leaf's block holding the simplices its
+    /// code gives, at their positions: then the live simplices are mesh()'s). Empty when
+    /// valid. O(size).
     [[nodiscard]] std::vector<std::string> check_invariants() const;
 
 private:
@@ -126,6 +127,10 @@ private:
         std::uint32_t uses = 0;
     };
     void refresh(const typename DynQuadtree<D>::GridPoint& g);
+    /// The simplices of leaf c with this code, positively oriented: lattice positions (the
+    /// vertex keys) and real positions (warped corners at their input point).
+    void leaf_geometry(const CellId<D>& c, std::uint32_t code, std::vector<Lattice>& keys,
+                       std::vector<Point>& points) const;
     /// Adds the simplices of leaf c with this code to the live mesh.
     void add_leaf(const CellId<D>& c, std::uint32_t code);
     /// Removes the simplices of a leaf from the live mesh (vertices left unused are removed by

@@ -67,11 +67,15 @@
 ///     empty trace.
 ///   * Read regions are conservative (enlarged by a relative 1e-9 and by the angle slack), so
 ///     some re-runs find the same outcome; they are counted in `evaluations`.
-///   * mesh() costs O(n + m) (it returns the whole mesh); the stored state and the triangulation
-///     are updated locally.
+///   * mesh() costs O(n + m) (it returns the whole canonical mesh); the stored state, the
+///     triangulation and current_mesh() are updated locally.
+///   * Precision: the best-first searches measure every candidate relative to the pair's first
+///     endpoint (differences of nearby doubles are exact), never to a rounded absolute midpoint,
+///     and read-region discs are enlarged by the rounding of their centres, so pairs of any
+///     resolvable length (offcenter_min_separation()) are searched exactly.
 ///   * A read region that would be unbounded (only when the closed-leaf slack exceeds θ_min,
-///     i.e. pairs near the input quantum at extreme spread) is registered as global: such an
-///     evaluation is re-run on every change stamped before it. Correct, but not local.
+///     which offcenter_min_separation() now rules out for input pairs) is registered as global:
+///     such an evaluation is re-run on every change stamped before it. Correct, but not local.
 ///   * build() is slower than offcenter_mesh() (best-first searches instead of one CGAL
 ///     triangulation: about 6–8× at n = 1e4–1e5) and the trace costs memory per vertex.
 ///   * Measured (offcenter_update_bench, ρ = 1.5, one update = an insert or an erase):
@@ -119,14 +123,16 @@ public:
     DynOffCenterMesh2& operator=(DynOffCenterMesh2&&) noexcept;
 
     /// From-scratch construction on `points`.
-    /// \throw InvalidInput as DynQuadtree::build (the point naming its index) or for a bad ρ.
+    /// \throw InvalidInput as DynQuadtree::build (the point naming its index), for a bad ρ, or
+    ///        naming a point closer to another than offcenter_min_separation() (offcenter.hpp).
     [[nodiscard]] static DynOffCenterMesh2 build(std::span<const Vec2> points,
                                                  const QuadtreeOptions<2>& domain,
                                                  const OffCenterOptions& options);
 
     /// Inserts p, with DynQuadtree<2>::insert's validation (snapping, middle third, duplicates,
-    /// NaN, resolution). On any result other than Inserted nothing changes (last_update() and
-    /// last_change() included).
+    /// NaN, resolution); BeyondPrecision also when p is closer to an input than
+    /// offcenter_min_separation(). On any result other than Inserted nothing changes
+    /// (last_update() and last_change() included).
     /// \throw InternalError if more than options.max_steiner Steiner points would be needed
     ///        (the object is then unusable).
     [[nodiscard]] InsertResult insert(const Vec2& p);
