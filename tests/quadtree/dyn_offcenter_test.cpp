@@ -363,6 +363,18 @@ TEST(DynOffCenter, ClosePointsFarFromTheOriginMatchTheOracle) {
             }
 }
 
+/// 200 points 1e-13 apart on a diagonal at (1, 0.7) (about 450 ulps): the static run used to
+/// compute σ_t of a pair from its rounded absolute midpoint (an error of 1e-3 of σ_t), so it
+/// took a circumcentre where the dynamic search, which measures relative to the pair, found no
+/// vertex below the apex: the two meshes differed.
+TEST(DynOffCenter, StaticAndDynamicAgreeOnApexVersusCircumcentre) {
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 200; ++i) pts.push_back({1.0 + i * 1e-13, 0.7 + i * 1e-13});
+    const DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, auto_domain<2>(pts), {.rho = 1.5});
+    expect_matches_oracle(dyn, pts, "diagonal at (1, 0.7)");
+    expect_quality(dyn, "diagonal at (1, 0.7)");
+}
+
 /// Inputs closer than the tree's resolution (a non-dyadic box) or than
 /// offcenter_min_separation() (any box) are refused: build() and offcenter_mesh() name them,
 /// insert() returns BeyondPrecision without a change.
