@@ -13,7 +13,9 @@
 ///     (refine_Delaunay_mesh_2, Delaunay_mesh_size_criteria_2(0.125), i.e. about 20.7 degrees).
 /// Inputs: n = 1e3, 1e4, 1e5 points, uniform and clustered (20 Gaussian blobs of sigma 0.01, as
 /// quadtree_bench), in the middle third of the unit box, and the spread family of quadtree_bench
-/// (n = 1e4, half the points in a cluster of side 1e-1 ... 1e-10, updates inside the cluster);
+/// (n = 1e4, half the points in a cluster of side 1e-1 ... 1e-10, updates inside the cluster;
+/// points closer than offcenter_min_separation() to an earlier one are dropped, and queries
+/// the mesher refuses are skipped);
 /// rho = 1.5. A summary table with the
 /// ratios recompute / update follows Google Benchmark's output.
 /// Options: --benchmark_filter etc. as usual; DYNMESH_OFFCENTER_UPDATE_MAX_N (default 100000)
@@ -30,6 +32,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/quadtree/dyn_offcenter.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
@@ -69,8 +72,20 @@ Fixture& fixture(std::size_t i) {
     DynQuadtree<2> probe;
     bench::SpreadSet set;
     if (c.spread > 0) set = bench::spread_set(c.spread);
-    for (const Vec2& p : c.spread > 0 ? set.points : bench::make_points<2>(c.n, c.clustered, 1))
-        if (probe.insert(p) == InsertResult::Inserted) f.points.push_back(p);
+    // Distinct after snapping, and no two closer than the refinement resolves (the deepest
+    // spread cluster has random pairs below offcenter_min_separation()).
+    const double sep = offcenter_min_separation({}, {.rho = kRho});
+    PointGrid near(1e-3);  // PointGrid clamps cell coordinates to ±1e6: no tiny cells
+    for (const Vec2& p : c.spread > 0 ? set.points : bench::make_points<2>(c.n, c.clustered, 1)) {
+        const Point3 p3{p.x, p.y, 0};
+        bool close = false;
+        near.for_each_candidate(p3, sep, [&](std::uint32_t id) {
+            close = close || norm(f.points[id] - p) < sep;
+        });
+        if (close || probe.insert(p) != InsertResult::Inserted) continue;
+        near.insert(static_cast<std::uint32_t>(f.points.size()), p3);
+        f.points.push_back(p);
+    }
     f.queries = c.spread > 0 ? set.queries : bench::make_points<2>(4096, c.clustered, 2);
     const auto t0 = std::chrono::steady_clock::now();
     f.dyn =

@@ -169,10 +169,26 @@ void DynQuadMesh<D>::add_leaf(const CellId<D>& c, std::uint32_t code) {
     static thread_local std::vector<Lattice> keys;
     static thread_local std::vector<Point> points;
     static thread_local std::vector<typename LiveMesh<D>::Simplex> simplices;
+    static thread_local std::vector<std::pair<Lattice, std::uint32_t>> seen;  // this leaf's
     leaf_geometry(c, code, keys, points);
     simplices.assign(keys.size() / (D + 1), {});
-    for (std::size_t k = 0; k < keys.size(); ++k)
-        simplices[k / (D + 1)][k % (D + 1)] = acquire_vertex(keys[k], points[k]);
+    seen.clear();
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+        // A leaf has at most 3^D lattice vertices: look each up in the hash map once.
+        std::uint32_t v = LiveMesh<D>::kNone;
+        for (const auto& [key, id] : seen)
+            if (key == keys[k]) {
+                v = id;
+                break;
+            }
+        if (v == LiveMesh<D>::kNone) {
+            v = acquire_vertex(keys[k], points[k]);
+            seen.emplace_back(keys[k], v);
+        } else {
+            ++vertices_[v].uses;
+        }
+        simplices[k / (D + 1)][k % (D + 1)] = v;
+    }
     const std::uint32_t first = live_.add_simplices(simplices, delta_);
     leaves_[c] = {code, first, static_cast<std::uint32_t>(simplices.size())};
 }

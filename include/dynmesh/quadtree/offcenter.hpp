@@ -48,8 +48,8 @@
 ///     400 ulps of S at ρ = 1.5; S as above) are refused (InvalidInput naming them; insert():
 ///     InsertResult::BeyondPrecision). Below it the slack of their pair would exceed θ_min/2,
 ///     and soon θ_min itself, where no pair near them is ever loose and the output keeps
-///     slivers: the promise would be void. Steiner points are never closer to a vertex than
-///     the pair that created them, so the inputs' closest pair bounds the shortest edge.
+///     slivers: the promise would be void. An off-center's insertion radius is at least ρ·ℓ
+///     of its pair (Lemma A.7), so the inputs' closest pair bounds the shortest edge.
 ///   * Degenerate (cocircular) configurations, instead of the symbolic perturbation of §5.3.6:
 ///     (a) where a loose test or an off-center reads "the vertex t opposite pq", and several
 ///     vertices on that side are cocircular with p, q (a degenerate Delaunay cell), t is the
