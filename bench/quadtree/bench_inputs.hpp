@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/live_mesh.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
 namespace dynmesh::bench {
@@ -48,6 +49,21 @@ inline SpreadSet spread_set(int k) {
     for (int i = 0; i < 5000; ++i) s.points.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
     for (int i = 0; i < 4096; ++i) s.queries.push_back({0.5 + side * rng.uniform(), 0.5 + side * rng.uniform()});
     return s;
+}
+
+/// What a caller pays to consume one update's change, as a GPU buffer or a solver mirror
+/// would: every removed simplex and vertex id, and every added simplex with the coordinates of
+/// its vertices read from the live mesh. Returns a checksum so the reads are not optimised out.
+template <int D>
+double read_delta(const LiveMesh<D>& mesh, const MeshDelta<D>& delta) {
+    double sum = 0;
+    for (std::uint32_t s : delta.removed_simplices) sum += s;
+    for (std::uint32_t v : delta.removed_vertices) sum += v;
+    for (const auto& a : delta.added_vertices) sum += a.point[0];
+    for (const auto& a : delta.added_simplices)
+        for (std::uint32_t v : a.vertices)
+            for (int d = 0; d < D; ++d) sum += mesh.point(v)[static_cast<std::size_t>(d)];
+    return sum;
 }
 
 using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;

@@ -23,6 +23,8 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/quadtree/live_mesh.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 namespace {
@@ -35,6 +37,7 @@ using VertexHandle = Delaunay::Vertex_handle;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 inline bool lex_less(const Vec2& a, const Vec2& b) {
     return a.x < b.x || (a.x == b.x && a.y < b.y);
@@ -101,12 +104,19 @@ struct Disc {
     double r = 0;  // +inf: the whole plane
 };
 
+/// A bound on the rounding error of a centre computed near c (a few ulps of its coordinates):
+/// read-region discs are enlarged by it, because their radius can be as small as a few ulps
+/// when the pair is (points a few ulps apart far from the origin).
+double centre_error(const Vec2& c) { return 8 * kEps * (std::fabs(c.x) + std::fabs(c.y)); }
+
 /// The circle through p, q whose centre lies at signed offset h (length units) from the
-/// midpoint along the unit normal n, enlarged for floating-point safety.
+/// midpoint along the unit normal n, enlarged for floating-point safety (relative error of
+/// h and r, rounding of the midpoint m and of the centre).
 Disc pencil_disc(const Vec2& m, const Vec2& n, double h, double len) {
     if (!std::isfinite(h) || std::fabs(h) > 1e6 * len) return {m, kInf};
     const double r = std::sqrt(h * h + 0.25 * len * len);
-    return {m + h * n, r * (1 + 1e-9) + 1e-9 * len};
+    const Vec2 c = m + h * n;
+    return {c, r * (1 + 1e-9) + 1e-9 * len + centre_error(m) + centre_error(c)};
 }
 
 }  // namespace
@@ -131,6 +141,8 @@ struct DynOffCenterMesh2::Impl {
         std::vector<CellKey> regs;         // read-region cells of the creation evaluation
         bool global = false;               // creation read region unbounded
         VertexHandle vh;                   // in dt (null until applied)
+        std::uint32_t live = kNone;        // its vertex in the live mesh (with vh)
+        DynQuadtree<2>::GridPoint grid{};  // inputs: snapped coordinates (output order)
         bool touched = false;              // in touched_ (this update)
     };
     struct Cand {
@@ -221,6 +233,31 @@ struct DynOffCenterMesh2::Impl {
     std::map<std::pair<int, int>, std::size_t> rounds;
 
     OffCenterUpdateReport report;
+
+    // ---- live mesh (live_mesh.hpp): the canonical triangles, updated locally ----------------
+    /// A live-mesh vertex: its triangulation vertex, its output-order key (inputs first by
+    /// snapped coordinates, then Steiner points lexicographically: mesh()'s index order) and
+    /// the cells it belongs to.
+    struct LiveVertex {
+        VertexHandle vh;
+        bool steiner = false;
+        DynQuadtree<2>::GridPoint grid{};
+        Vec2 pos{};
+        std::vector<std::uint32_t> cells;
+    };
+    /// A Delaunay cell (a maximal set of triangles with one empty circumcircle): its boundary
+    /// ring of live vertices, counter-clockwise from its smallest vertex, and the block of
+    /// its fan triangles (ring[0], ring[j], ring[j + 1]).
+    struct LiveCell {
+        std::vector<std::uint32_t> ring;
+        std::uint32_t first = 0;
+    };
+    LiveMesh<2> live;
+    MeshDelta<2> change;
+    std::vector<LiveVertex> lverts;
+    std::vector<LiveCell> lcells;
+    std::vector<std::uint32_t> free_lcells;
+    std::vector<std::uint32_t> dirty;  // live vertices whose cells may have changed
     std::set<std::pair<int, int>> visited_rounds;
     Stamp last_time;
 
@@ -440,6 +477,7 @@ struct DynOffCenterMesh2::Impl {
         bool blocked = false;             // a visible vertex on the open segment
         std::vector<std::uint32_t> ties;  // the minimisers (exactly cocircular)
         double h = kInf;                  // their offset (floating point)
+        double h_err = 0;                 // a bound on the rounding error of h
     };
 
     /// The visible vertices x strictly on side `cw` of a -> b minimising the circle through
@@ -455,33 +493,41 @@ struct DynOffCenterMesh2::Impl {
         const double len2 = dot(d, d), len = std::sqrt(len2);
         const Vec2 perp = cw ? Vec2{d.y, -d.x} : Vec2{-d.y, d.x};
         const Vec2 n{perp.x / len, perp.y / len};
-        const Vec2 m{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+        const Vec2 hm{0.5 * d.x, 0.5 * d.y};  // the midpoint relative to a (exact)
         const Sign want = cw ? Sign::Negative : Sign::Positive;
+        // Candidates beyond it cannot be minimisers: the current best's offset plus its
+        // rounding error (or hmax), with a relative margin.
         auto limit = [&]() {
-            const double h = std::min(hmax, res.h);
+            const double h = std::min(hmax, res.h + res.h_err);
             return std::isfinite(h) ? h + 1e-9 * (std::fabs(h) + len) : h;
         };
         auto lower = [&](const PNode& nd) {
-            // Lower bound of h over the node box (on the wanted side).
-            const double dx = std::max({nd.x0 - m.x, 0.0, m.x - nd.x1});
-            const double dy = std::max({nd.y0 - m.y, 0.0, m.y - nd.y1});
+            // Lower bound of h over the node box (on the wanted side), in coordinates relative
+            // to a: box corners minus a are single roundings, hm = d/2 is exact, so every
+            // error below is relative to distances from the pair, never to |coordinates|.
+            const double bx0 = (nd.x0 - a.x) - hm.x, bx1 = (nd.x1 - a.x) - hm.x;
+            const double by0 = (nd.y0 - a.y) - hm.y, by1 = (nd.y1 - a.y) - hm.y;
+            const double dx = std::max({bx0, 0.0, -bx1});
+            const double dy = std::max({by0, 0.0, -by1});
             const double dmin2 = dx * dx + dy * dy;
             double vmin = kInf, vmax = -kInf;
-            for (const Vec2 c :
-                 {Vec2{nd.x0, nd.y0}, Vec2{nd.x1, nd.y0}, Vec2{nd.x0, nd.y1}, Vec2{nd.x1, nd.y1}}) {
-                const double v = dot(c - m, n);
+            for (const Vec2 c : {Vec2{bx0, by0}, Vec2{bx1, by0}, Vec2{bx0, by1}, Vec2{bx1, by1}}) {
+                const double v = dot(c, n);
                 vmin = std::min(vmin, v);
                 vmax = std::max(vmax, v);
             }
-            const double eps = 1e-14 * (kernel.scale + len);
+            const double reach = std::max({std::fabs(bx0), std::fabs(bx1), std::fabs(by0),
+                                           std::fabs(by1)}) + len;
+            const double eps = 1e-14 * reach;
             if (vmax + eps <= 0) return kInf;  // entirely on the other side
             const double num = dmin2 - 0.25 * len2;
+            const double num_err = 16 * kEps * (reach * reach + len2);
             double lb;
             if (num >= 0) {
-                lb = num / (2 * (vmax + eps));
+                lb = (num - num_err) / (2 * (vmax + eps));
             } else {
                 const double vm = vmin - eps;
-                lb = vm > 0 ? num / (2 * vm) : -kInf;
+                lb = vm > 0 ? (num - num_err) / (2 * vm) : -kInf;
             }
             return std::isfinite(lb) ? lb - 1e-9 * (std::fabs(lb) + len) : lb;
         };
@@ -515,15 +561,26 @@ struct DynOffCenterMesh2::Impl {
                             continue;
                         }
                         if (o != want) continue;
-                        const Vec2 x = e.pos - m;
+                        // Relative to the midpoint through a: e.pos − a is one rounding, so the
+                        // error of x is relative to |x|, not to the coordinates (points a few
+                        // ulps apart far from the origin).
+                        const Vec2 x = (e.pos - a) - hm;
                         // x is exactly on the wanted side, so its distance to the line is > 0
                         // even where rounding says otherwise (nearly collinear x).
                         const double v = std::max(dot(x, n), std::numeric_limits<double>::min());
-                        const double h = (dot(x, x) - 0.25 * len2) / (2 * v);
-                        if (h > limit()) continue;
+                        const double xx = dot(x, x);
+                        const double h = (xx - 0.25 * len2) / (2 * v);
+                        // Skip only when h surely exceeds the limit: the error of the
+                        // numerator, and the relative error of v (large for x nearly on the
+                        // line of the pair).
+                        const double h_err =
+                            16 * kEps *
+                            ((xx + len2) / (2 * v) + std::fabs(h) * (1 + std::sqrt(xx) / v));
+                        if (h - h_err > limit()) continue;
                         if (res.ties.empty()) {
                             res.ties = {id};
                             res.h = h;
+                            res.h_err = h_err;
                             continue;
                         }
                         const Vec2& bp = verts[res.ties.front()].pos;
@@ -531,8 +588,10 @@ struct DynOffCenterMesh2::Impl {
                         if (s == Sign::Positive) {
                             res.ties = {id};
                             res.h = h;
+                            res.h_err = h_err;
                         } else if (s == Sign::Zero) {
                             res.ties.push_back(id);
+                            res.h_err = std::max(res.h_err, h_err);
                         }
                     }
                 } else {
@@ -904,7 +963,8 @@ struct DynOffCenterMesh2::Impl {
             const double cond = std::sqrt(bl * cl) / std::fabs(den);
             const double grow = 1e-9 + 256 * std::numeric_limits<double>::epsilon() * cond;
             const bool ok = std::isfinite(r) && std::isfinite(cond) && grow < 1e-3;
-            discs.push_back({o, ok ? r * (1 + grow) + 1e-9 * std::sqrt(bl) : kInf});
+            discs.push_back(
+                {o, ok ? r * (1 + grow) + 1e-9 * std::sqrt(bl) + centre_error(o) : kInf});
         };
         bool closed = false;
         for (int dir = 0; dir < 2 && !closed; ++dir) {
@@ -1167,9 +1227,10 @@ struct DynOffCenterMesh2::Impl {
             last_time = item.time;
         }
     }
-    /// Applies the symmetric difference of the vertex sets to the triangulation and frees the
-    /// records of deleted objects.
+    /// Applies the symmetric difference of the vertex sets to the triangulation and the live
+    /// mesh, and frees the records of deleted objects.
     void end_update() {
+        change.clear();
         std::map<std::pair<double, double>, std::uint32_t>
             removed;  // position -> dead vertex with a handle
         std::vector<std::uint32_t> added;
@@ -1185,34 +1246,46 @@ struct DynOffCenterMesh2::Impl {
             Vertex& v = verts[id];
             const auto it = removed.find({v.pos.x, v.pos.y});
             if (it != removed.end()) {
-                v.vh = verts[it->second].vh;
+                Vertex& old = verts[it->second];
+                v.vh = old.vh;
                 v.vh->info() = id;
-                verts[it->second].vh = VertexHandle();
-                if ((verts[it->second].kind == VKind::Input) != (v.kind == VKind::Input)) {
+                v.live = old.live;
+                old.vh = VertexHandle();
+                old.live = kNone;
+                if ((old.kind == VKind::Input) != (v.kind == VKind::Input)) {
                     if (v.kind == VKind::Input)
                         ++report.steiner_removed;
                     else
                         ++report.steiner_added;
+                    set_live_key(v.live, v);  // its place in the output order changed
+                    dirty.push_back(v.live);
                 }
                 removed.erase(it);
                 continue;
             }
             v.vh = dt.insert(to_cgal(v.pos));
             v.vh->info() = id;
-            const std::size_t deg = dt.degree(v.vh);
-            report.triangles_added += deg;
-            report.triangles_removed += deg >= 2 ? deg - 2 : 0;
+            v.live = live.add_vertex(v.pos, change);
+            if (v.live >= lverts.size()) lverts.resize(v.live + 1);
+            lverts[v.live].vh = v.vh;
+            set_live_key(v.live, v);
+            mark_star(v.vh);
             if (v.kind != VKind::Input) ++report.steiner_added;
         }
         for (const auto& [pos, id] : removed) {
             Vertex& v = verts[id];
-            const std::size_t deg = dt.degree(v.vh);
-            report.triangles_removed += deg;
-            report.triangles_added += deg >= 2 ? deg - 2 : 0;
+            mark_star(v.vh);
             dt.remove(v.vh);
             v.vh = VertexHandle();
+            live.remove_vertex(v.live, change);
+            lverts[v.live].vh = VertexHandle();
+            v.live = kNone;
             if (v.kind != VKind::Input) ++report.steiner_removed;
         }
+        update_cells();
+        live.recycle();
+        report.triangles_added = change.added_simplices.size();
+        report.triangles_removed = change.removed_simplices.size();
         report.rounds_visited = visited_rounds.size();
         for (std::uint32_t id : dead_verts) {
             verts[id].cands.clear();
@@ -1229,6 +1302,134 @@ struct DynOffCenterMesh2::Impl {
         dead_cands.clear();
         dead_procs.clear();
         touched.clear();
+    }
+
+    void set_live_key(std::uint32_t lid, const Vertex& v) {
+        LiveVertex& l = lverts[lid];
+        l.steiner = v.kind != VKind::Input;
+        l.grid = v.grid;
+        l.pos = v.pos;
+    }
+    /// mesh()'s index order: inputs by snapped coordinates, then Steiner points by (x, y).
+    [[nodiscard]] bool out_less(std::uint32_t a, std::uint32_t b) const {
+        const LiveVertex &x = lverts[a], &y = lverts[b];
+        if (x.steiner != y.steiner) return !x.steiner;
+        return x.steiner ? lex_less(x.pos, y.pos) : x.grid < y.grid;
+    }
+    /// A vertex and its current neighbours: every Delaunay cell created or destroyed by
+    /// inserting or removing it has one of them as a vertex.
+    void mark_star(VertexHandle h) {
+        dirty.push_back(verts[h->info()].live);
+        const auto first = dt.incident_vertices(h);
+        if (first == nullptr) return;
+        auto w = first;
+        do {
+            if (!dt.is_infinite(w)) dirty.push_back(verts[w->info()].live);
+        } while (++w != first);
+    }
+    /// The Delaunay cell of face f (faces joined across edges whose four points are
+    /// cocircular, exact test, as detail::finish_offcenter_mesh), as its canonical ring; marks
+    /// its faces in `seen`.
+    std::vector<std::uint32_t> cell_ring(Delaunay::Face_handle f,
+                                         std::unordered_set<const void*>& seen) const {
+        std::vector<Delaunay::Face_handle> faces{f}, stack{f};
+        seen.insert(&*f);
+        const auto pos = [](VertexHandle h) { return Vec2{h->point().x(), h->point().y()}; };
+        while (!stack.empty()) {
+            const auto g = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const auto h = g->neighbor(k);
+                if (dt.is_infinite(h) || seen.contains(&*h)) continue;
+                const VertexHandle far = h->vertex(dt.mirror_index(g, k));
+                if (incircle(pos(g->vertex(0)), pos(g->vertex(1)), pos(g->vertex(2)), pos(far)) !=
+                    Sign::Zero)
+                    continue;
+                seen.insert(&*h);
+                faces.push_back(h);
+                stack.push_back(h);
+            }
+        }
+        std::vector<std::uint32_t> ring;
+        if (faces.size() == 1) {
+            for (int k = 0; k < 3; ++k) ring.push_back(verts[f->vertex(k)->info()].live);
+        } else {
+            std::unordered_set<const void*> in_cell;
+            for (const auto& g : faces) in_cell.insert(&*g);
+            std::unordered_map<std::uint32_t, std::uint32_t> next;  // boundary edges, ccw
+            for (const auto& g : faces)
+                for (int k = 0; k < 3; ++k) {
+                    if (!dt.is_infinite(g->neighbor(k)) && in_cell.contains(&*g->neighbor(k)))
+                        continue;
+                    next[verts[g->vertex(Delaunay::ccw(k))->info()].live] =
+                        verts[g->vertex(Delaunay::cw(k))->info()].live;
+                }
+            std::uint32_t v = next.begin()->first;
+            do {
+                ring.push_back(v);
+                v = next.at(v);
+            } while (v != ring.front() && ring.size() <= next.size());
+            if (ring.size() != next.size())
+                throw InternalError("DynOffCenterMesh2: a degenerate Delaunay cell is not a polygon");
+        }
+        const auto lowest = std::min_element(
+            ring.begin(), ring.end(), [&](std::uint32_t a, std::uint32_t b) { return out_less(a, b); });
+        std::rotate(ring.begin(), lowest, ring.end());  // keeps the ccw order
+        return ring;
+    }
+    void add_cell(std::vector<std::uint32_t> ring) {
+        std::vector<LiveMesh<2>::Simplex> fan;
+        for (std::size_t j = 1; j + 1 < ring.size(); ++j) fan.push_back({ring[0], ring[j], ring[j + 1]});
+        std::uint32_t c;
+        if (!free_lcells.empty()) {
+            c = free_lcells.back();
+            free_lcells.pop_back();
+        } else {
+            c = static_cast<std::uint32_t>(lcells.size());
+            lcells.emplace_back();
+        }
+        lcells[c].first = live.add_simplices(fan, change);
+        for (std::uint32_t v : ring) lverts[v].cells.push_back(c);
+        lcells[c].ring = std::move(ring);
+    }
+    void remove_cell(std::uint32_t c) {
+        LiveCell& cell = lcells[c];
+        live.remove_simplices(cell.first, static_cast<std::uint32_t>(cell.ring.size() - 2), change);
+        for (std::uint32_t v : cell.ring) {
+            auto& cs = lverts[v].cells;
+            cs.erase(std::find(cs.begin(), cs.end(), c));
+        }
+        cell.ring.clear();
+        free_lcells.push_back(c);
+    }
+    /// Replaces the cells of the dirty vertices that changed by the current ones.
+    void update_cells() {
+        std::sort(dirty.begin(), dirty.end());
+        dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+        std::map<std::vector<std::uint32_t>, std::uint32_t> old;  // ring -> cell
+        for (std::uint32_t v : dirty)
+            for (std::uint32_t c : lverts[v].cells) old.emplace(lcells[c].ring, c);
+        std::vector<std::uint32_t> kept;
+        std::vector<std::vector<std::uint32_t>> fresh;
+        std::unordered_set<const void*> seen;
+        for (std::uint32_t v : dirty) {
+            if (!live.has_vertex(v)) continue;
+            const auto first = dt.incident_faces(lverts[v].vh);
+            auto f = first;
+            do {
+                if (dt.is_infinite(f) || seen.contains(&*f)) continue;
+                std::vector<std::uint32_t> ring = cell_ring(f, seen);
+                if (const auto it = old.find(ring); it != old.end())
+                    kept.push_back(it->second);
+                else
+                    fresh.push_back(std::move(ring));
+            } while (++f != first);
+        }
+        std::sort(kept.begin(), kept.end());
+        for (const auto& [ring, c] : old)
+            if (!std::binary_search(kept.begin(), kept.end(), c)) remove_cell(c);
+        for (auto& ring : fresh) add_cell(std::move(ring));
+        dirty.clear();
     }
 
     /// Round 0 (static round_zero()): side k is split at its midpoint iff an input lies in its
@@ -1254,33 +1455,41 @@ struct DynOffCenterMesh2::Impl {
         }
     }
 
+    /// The input closer to p than offcenter_min_separation() (other than one at p itself),
+    /// or kNone. A check, not work of the update: report.queries is left alone.
+    [[nodiscard]] std::uint32_t too_close(const Vec2& p) {
+        Visibility vis;
+        vis.bound.phase = 1;  // exclusive: the inputs and the box corners (phase 0)
+        const std::size_t queries = report.queries;
+        const std::uint32_t q = nearest(p, vis);
+        report.queries = queries;
+        if (q == kNone || verts[q].kind != VKind::Input) return kNone;
+        const Vec2 d = verts[q].pos - p;
+        const double sep = kernel.min_separation();
+        return dot(d, d) < sep * sep ? q : kNone;
+    }
+
     void add_input(const DynQuadtree<2>::GridPoint& g, const Vec2& p) {
         inputs[g] = add_vertex(p, Stamp{}, VKind::Input, -1);
+        verts[inputs[g]].grid = g;
         update_round0(p, +1);
     }
 };
 
 // ------------------------------------------------------------------------------------------
 
-namespace {
-void check_rho(const OffCenterOptions& options) {
-    if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
-        throw InvalidInput("DynOffCenterMesh2: rho = " + std::to_string(options.rho) +
-                           " must be finite and > sqrt(2)");
-}
-}  // namespace
-
 DynOffCenterMesh2::DynOffCenterMesh2(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 DynOffCenterMesh2::DynOffCenterMesh2(const QuadtreeOptions<2>& domain,
                                      const OffCenterOptions& options) {
-    check_rho(options);
+    detail::check_rho(options, "DynOffCenterMesh2");
     impl_ = std::make_unique<Impl>(domain, options);
     impl_->begin_update();
     impl_->init_box();
     impl_->propagate();
     impl_->end_update();
     impl_->report = OffCenterUpdateReport{};
+    impl_->change.clear();
 }
 
 DynOffCenterMesh2::~DynOffCenterMesh2() = default;
@@ -1290,21 +1499,31 @@ DynOffCenterMesh2& DynOffCenterMesh2::operator=(DynOffCenterMesh2&&) noexcept = 
 DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
                                            const QuadtreeOptions<2>& domain,
                                            const OffCenterOptions& options) {
-    check_rho(options);
+    detail::check_rho(options, "DynOffCenterMesh2");
     DynQuadtree<2> tree = DynQuadtree<2>::build(points, domain);  // validates, names bad points
     auto impl = std::make_unique<Impl>(domain, options);
     impl->tree = std::move(tree);
     impl->begin_update();
     impl->init_box();
     for (const auto& [g, p] : impl->tree.points()) impl->add_input(g, p);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (const std::uint32_t q = impl->too_close(points[i]); q != kNone)
+            throw InvalidInput("DynOffCenterMesh2::build: point " + std::to_string(i) + " " +
+                               detail::format_point<2>(points[i]) + " is closer to the point " +
+                               detail::format_point<2>(impl->verts[q].pos) + " than the " +
+                               detail::format_double(impl->kernel.min_separation()) +
+                               " the off-center refinement resolves (offcenter_min_separation)");
     impl->propagate();
     impl->end_update();
     impl->report = OffCenterUpdateReport{};
+    impl->change.clear();
     return DynOffCenterMesh2(std::move(impl));
 }
 
 InsertResult DynOffCenterMesh2::insert(const Vec2& p) {
     Impl& m = *impl_;
+    if (m.tree.is_admissible(p) && !m.tree.contains(p) && m.too_close(p) != kNone)
+        return InsertResult::BeyondPrecision;
     const InsertResult r = m.tree.insert(p);
     if (r != InsertResult::Inserted) return r;
     m.begin_update();
@@ -1336,6 +1555,8 @@ EraseResult DynOffCenterMesh2::erase(const Vec2& p) {
 const DynQuadtree<2>& DynOffCenterMesh2::tree() const { return impl_->tree; }
 const OffCenterOptions& DynOffCenterMesh2::options() const { return impl_->options; }
 const OffCenterUpdateReport& DynOffCenterMesh2::last_update() const { return impl_->report; }
+const LiveMesh<2>& DynOffCenterMesh2::current_mesh() const { return impl_->live; }
+const MeshDelta<2>& DynOffCenterMesh2::last_change() const { return impl_->change; }
 std::size_t DynOffCenterMesh2::vertex_count() const { return impl_->alive_count; }
 
 OffCenterMesh2 DynOffCenterMesh2::mesh() const {
@@ -1453,6 +1674,27 @@ std::vector<std::string> DynOffCenterMesh2::check_invariants() const {
     }
     // The output against the static oracle.
     const OffCenterMesh2 a = mesh(), b = offcenter_mesh(m.tree, m.options);
+    // The live mesh against mesh(), as sets of triangles (each starts at its smallest vertex
+    // in output order, counter-clockwise, in both).
+    {
+        using Tri = std::array<double, 6>;
+        std::vector<Tri> want, got;
+        for (const auto& t : a.triangles)
+            want.push_back({a.points[t[0]].x, a.points[t[0]].y, a.points[t[1]].x,
+                            a.points[t[1]].y, a.points[t[2]].x, a.points[t[2]].y});
+        for (std::uint32_t k = 0; k < m.live.simplex_slots(); ++k) {
+            if (!m.live.has_simplex(k)) continue;
+            const auto& t = m.live.simplex(k);
+            const auto& P = [&](std::uint32_t v) { return m.live.point(v); };
+            got.push_back({P(t[0]).x, P(t[0]).y, P(t[1]).x, P(t[1]).y, P(t[2]).x, P(t[2]).y});
+        }
+        std::sort(want.begin(), want.end());
+        std::sort(got.begin(), got.end());
+        if (want != got) bad.push_back("the live mesh differs from mesh()");
+        if (m.live.vertex_count() != m.alive_count)
+            bad.push_back("the live mesh has " + std::to_string(m.live.vertex_count()) +
+                          " vertices, the triangulation " + std::to_string(m.alive_count));
+    }
     if (a.points != b.points) bad.push_back("mesh points differ from offcenter_mesh()");
     if (a.triangles != b.triangles) bad.push_back("mesh triangles differ from offcenter_mesh()");
     if (a.input_vertices != b.input_vertices)

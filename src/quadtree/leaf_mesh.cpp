@@ -216,6 +216,60 @@ Lattice<D> code_apex(const CellId<D>& leaf, LeafCode code) {
 }
 
 template <int D>
+void orient_lattice_simplex(LatticeSimplex<D>& t) {
+    // Exact: lattice coordinates are integers below 2^53.
+    std::array<PointD<D>, D + 1> lat;
+    for (int i = 0; i <= D; ++i)
+        for (int d = 0; d < D; ++d)
+            lat[static_cast<std::size_t>(i)][static_cast<std::size_t>(d)] =
+                static_cast<double>(t[static_cast<std::size_t>(i)][static_cast<std::size_t>(d)]);
+    Sign want;
+    if constexpr (D == 2)
+        want = orient2d(lat[0], lat[1], lat[2]);
+    else
+        want = orient3d(lat[0], lat[1], lat[2], lat[3]);
+    if (want == Sign::Zero) throw InternalError("quadtree mesh: a flat simplex");
+    if (D == 2 && want == Sign::Negative)
+        throw InternalError("quadtree mesh: a clockwise triangle in the construction");
+    if (want == Sign::Negative) std::swap(t[D - 1], t[D]);
+}
+
+template <int D>
+void check_warped_orientation(const std::array<PointD<D>, D + 1>& p) {
+    Sign s;
+    if constexpr (D == 2)
+        s = orient2d(p[0], p[1], p[2]);
+    else
+        s = orient3d(p[0], p[1], p[2], p[3]);
+    if (s != Sign::Positive)
+        throw InternalError("quadtree mesh: warping an input point inverted or flattened a simplex");
+}
+
+template <int D>
+PointD<D> lattice_position(const QuadtreeOptions<D>& domain, const Lattice<D>& k) {
+    const double unit = domain.width * 0x1p-52;  // exact: a power-of-two scaling
+    PointD<D> p;
+    for (int d = 0; d < D; ++d) {
+        const auto ud = static_cast<std::size_t>(d);
+        p[ud] = domain.origin[ud] + static_cast<double>(k[d]) * unit;
+    }
+    return p;
+}
+
+template <int D>
+const PointD<D>* star_point(const DynQuadtree<D>& tree, const CellId<D>& leaf, LeafCode code) {
+    if (!code_is_star<D>(code) || leaf.level <= kSnapLevel<D>) return nullptr;
+    const Lattice<D> v = code_apex<D>(leaf, code);
+    for (int mask = 0; mask < (1 << D); ++mask) {  // the 2^D star cells around the apex
+        CellId<D> c{leaf.level, {}};
+        for (int d = 0; d < D; ++d) c.index[d] = (v[d] >> leaf.level) - 1 + ((mask >> d) & 1);
+        const auto pts = tree.leaf_points(c);
+        if (!pts.empty()) return &pts[0].point;
+    }
+    throw InternalError("quadtree mesh: a star without its point at " + cell_name(leaf));
+}
+
+template <int D>
 AssembledMesh<D> assemble(const DynQuadtree<D>& tree,
                           std::span<const std::pair<CellId<D>, LeafCode>> leaves) {
     using Point = PointD<D>;
@@ -254,54 +308,27 @@ AssembledMesh<D> assemble(const DynQuadtree<D>& tree,
     };
 
     AssembledMesh<D> out;
-    const auto& opt = tree.options();
-    const double unit = opt.width * 0x1p-52;  // exact: a power-of-two scaling
     out.points.reserve(keys.size());
     auto w = warped.begin();
     for (const Lattice<D>& k : keys) {
         while (w != warped.end() && w->first < k) ++w;
-        if (w != warped.end() && w->first == k) {
+        if (w != warped.end() && w->first == k)
             out.points.push_back(w->second);
-        } else {
-            Point p;
-            for (int d = 0; d < D; ++d) {
-                const auto ud = static_cast<std::size_t>(d);
-                p[ud] = opt.origin[ud] + static_cast<double>(k[d]) * unit;
-            }
-            out.points.push_back(p);
-        }
-    }
-    // Orientation: the sign of each simplex at the lattice positions (exact: lattice
-    // coordinates are integers below 2^53) decides the vertex order; the simplex at the real
-    // positions (warped corners moved onto their points) must have the same sign.
-    const auto sign_of = [](const auto& a, const auto& b, const auto& c, const auto& d) {
-        if constexpr (D == 2)
-            return orient2d(a, b, c);
         else
-            return orient3d(a, b, c, d);
-    };
-    const auto lattice_point = [](const Lattice<D>& k) {
-        Point p;
-        for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] = static_cast<double>(k[d]);
-        return p;
-    };
+            out.points.push_back(lattice_position<D>(tree.options(), k));
+    }
+    // Orientation: the sign of each simplex at the lattice positions decides the vertex order;
+    // the simplex at the real positions must have the same sign.
     out.simplices.reserve(simplices.size());
-    for (const auto& t : simplices) {
+    for (auto& t : simplices) {
+        orient_lattice_simplex<D>(t);
         std::array<std::uint32_t, D + 1> s{};
-        std::array<Point, D + 1> lat;
+        std::array<Point, D + 1> real;
         for (int i = 0; i <= D; ++i) {
             s[i] = index(t[i]);
-            lat[i] = lattice_point(t[i]);
+            real[i] = out.points[s[i]];
         }
-        const Sign want = sign_of(lat[0], lat[1], lat[2], lat[D]);
-        if (want == Sign::Zero) throw InternalError("quadtree mesh: a flat simplex");
-        if (D == 2 && want == Sign::Negative)
-            throw InternalError("quadtree mesh: a clockwise triangle in the construction");
-        if (want == Sign::Negative) std::swap(s[D - 1], s[D]);
-        const auto& P = out.points;
-        if (sign_of(P[s[0]], P[s[1]], P[s[2]], P[s[D]]) != Sign::Positive)
-            throw InternalError(
-                "quadtree mesh: warping an input point inverted or flattened a simplex");
+        check_warped_orientation<D>(real);
         out.simplices.push_back(s);
     }
     std::sort(inputs.begin(), inputs.end());
@@ -382,6 +409,10 @@ PublicMesh<D> mesh_of_tree(const DynQuadtree<D>& tree) {
     template bool code_holds_point<D>(LeafCode);                                               \
     template Lattice<D> code_apex<D>(const CellId<D>&, LeafCode);                              \
     template std::pair<Lattice<D>, std::uint64_t> cell_box<D>(const CellId<D>&);               \
+    template void orient_lattice_simplex<D>(LatticeSimplex<D>&);                               \
+    template void check_warped_orientation<D>(const std::array<PointD<D>, D + 1>&);            \
+    template PointD<D> lattice_position<D>(const QuadtreeOptions<D>&, const Lattice<D>&);      \
+    template const PointD<D>* star_point<D>(const DynQuadtree<D>&, const CellId<D>&, LeafCode); \
     template std::string cell_name<D>(const CellId<D>&);                                       \
     template AssembledMesh<D> assemble<D>(const DynQuadtree<D>&,                               \
                                           std::span<const std::pair<CellId<D>, LeafCode>>);    \

@@ -79,6 +79,25 @@ template <>
 void leaf_simplices<3>(const CellId<3>& leaf, LeafCode code,
                        std::vector<LatticeSimplex<3>>& out);
 
+/// Orients a lattice simplex of leaf_simplices() positively by the exact lattice orientation
+/// (3D: swaps its last two vertices when negative).
+/// \throw InternalError if it is flat, or (2D) clockwise, which the construction never makes.
+template <int D>
+void orient_lattice_simplex(LatticeSimplex<D>& t);
+/// Throws InternalError unless the simplex at its real vertex positions (warped corners moved
+/// onto their points) is positively oriented (exact orient2d / orient3d).
+template <int D>
+void check_warped_orientation(const std::array<PointD<D>, D + 1>& p);
+/// The position of an unwarped lattice vertex: origin + k·W·2^-52 per axis.
+template <int D>
+[[nodiscard]] PointD<D> lattice_position(const QuadtreeOptions<D>& domain, const Lattice<D>& k);
+/// The input point the star's apex code_apex(leaf, code) is moved onto, when the leaf is a
+/// star cell and the star's point leaf is at least two input quanta wide (else nullptr: the
+/// apex stays at its lattice position, see assemble()).
+template <int D>
+[[nodiscard]] const PointD<D>* star_point(const DynQuadtree<D>& tree, const CellId<D>& leaf,
+                                          LeafCode code);
+
 /// A mesh in index form, vertices sorted by lattice key.
 template <int D>
 struct AssembledMesh {

@@ -9,6 +9,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "format.hpp"
 #include "leaf_mesh.hpp"
 
 namespace dynmesh {
@@ -172,12 +173,15 @@ std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
             bad.push_back(name + " is not positively oriented");
         volume6 += six_volume(a, b, c, d);
     }
-    const long double want = static_cast<long double>(mesh.width) * mesh.width * mesh.width;
-    if (std::fabs(volume6 / 6 - want) > 1e-12L * want)
-        bad.push_back("total volume " + std::to_string(static_cast<double>(volume6 / 6)) +
-                      " differs from the domain volume " + std::to_string(static_cast<double>(want)));
+    // The box the vertices span: its far corner is origin + W rounded, as the mesh places it.
     const Vec3 lo = mesh.origin;
     const Vec3 hi{lo.x + mesh.width, lo.y + mesh.width, lo.z + mesh.width};
+    const long double want = (static_cast<long double>(hi.x) - lo.x) *
+                             (static_cast<long double>(hi.y) - lo.y) *
+                             (static_cast<long double>(hi.z) - lo.z);
+    if (std::fabs(volume6 / 6 - want) > 1e-12L * want)
+        bad.push_back("total volume " + detail::format_double(static_cast<double>(volume6 / 6)) +
+                      " differs from the domain volume " + detail::format_double(static_cast<double>(want)));
     std::sort(faces.begin(), faces.end());
     for (std::size_t i = 0; i < faces.size();) {
         std::size_t j = i + 1;

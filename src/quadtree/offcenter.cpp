@@ -21,6 +21,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 namespace {
@@ -324,6 +325,18 @@ OffCenterMesh2 OffCenterRefiner::run() {
         vertices_[k] = v;
         hint = v->face();
     }
+    // Resolution (file comment): the closest pair of inputs is a Delaunay edge.
+    const double min_sep2 = kernel_.min_separation() * kernel_.min_separation();
+    for (auto e = dt_.finite_edges_begin(); e != dt_.finite_edges_end(); ++e) {
+        const Vec2 a = to_vec(e->first->vertex(Delaunay::ccw(e->second))->point());
+        const Vec2 b = to_vec(e->first->vertex(Delaunay::cw(e->second))->point());
+        if (dot(b - a, b - a) < min_sep2)
+            throw InvalidInput("offcenter_mesh: points " + detail::format_point<2>(a) + " and " +
+                               detail::format_point<2>(b) + " are closer than the " +
+                               detail::format_double(kernel_.min_separation()) +
+                               " the off-center refinement resolves in this domain at rho = " +
+                               detail::format_double(options_.rho));
+    }
     // Box corners: the hull of V is the box from now on.
     for (int side = 0; side < 4; ++side) {
         side_coords_[static_cast<std::size_t>(side)] = {side % 2 == 0 ? origin_.x : origin_.y,
@@ -415,6 +428,16 @@ double OffCenterKernel::slack(double len2) const {
     return 1e-12 + 64.0 * DBL_EPSILON * scale / std::sqrt(len2);
 }
 
+void check_rho(const OffCenterOptions& options, const char* who) {
+    if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
+        throw InvalidInput(std::string(who) + ": rho = " + std::to_string(options.rho) +
+                           " must be finite and > sqrt(2)");
+}
+
+double OffCenterKernel::min_separation() const {
+    return 64.0 * DBL_EPSILON * scale / (0.5 * theta - 1e-12);
+}
+
 int OffCenterKernel::size_class(double len2) const {
     int e = 0;
     (void)std::frexp(len2 / (width * width), &e);  // len2/W² in [2^(e-1), 2^e)
@@ -447,23 +470,27 @@ bool OffCenterKernel::in_leaf_other_side(const Vec2& u, const Vec2& lo, const Ve
     return angle_at(u, lo, hi_pt) >= std::numbers::pi - theta - slack(len2);
 }
 
+// Both work relative to lo: the midpoint is lo + d/2 with d/2 exact, and t − lo is exact for
+// nearby points, so σ_t carries a relative error of a few ε of the pair, not an ulp of the
+// coordinates (which is a large part of a pair a few thousand ulps long); the result is
+// rounded once, when lo is added back. DynOffCenterMesh2's searches use the same frame.
 Vec2 OffCenterKernel::offcenter(const Vec2& lo, const Vec2& hi_pt, bool cw, double len2,
                                 const Vec2& t, bool& apex) const {
     const Vec2 d = hi_pt - lo;
     const Vec2 perp = cw ? Vec2{d.y, -d.x} : Vec2{-d.y, d.x};
-    const Vec2 m{0.5 * (lo.x + hi_pt.x), 0.5 * (lo.y + hi_pt.y)};
-    const Vec2 w = t - m;
+    const Vec2 hm{0.5 * d.x, 0.5 * d.y};
+    const Vec2 w = (t - lo) - hm;
     const double sigma_t = (dot(w, w) - 0.25 * len2) / (2.0 * dot(w, perp));
     apex = use_offcenters && sigma_apex <= sigma_t;
     const double sigma = apex ? sigma_apex : sigma_t;
-    return m + sigma * perp;
+    return lo + (hm + sigma * perp);
 }
 
 Vec2 OffCenterKernel::apex_point(const Vec2& lo, const Vec2& hi_pt, bool cw) const {
     const Vec2 d = hi_pt - lo;
     const Vec2 perp = cw ? Vec2{d.y, -d.x} : Vec2{-d.y, d.x};
-    const Vec2 m{0.5 * (lo.x + hi_pt.x), 0.5 * (lo.y + hi_pt.y)};
-    return m + sigma_apex * perp;
+    const Vec2 hm{0.5 * d.x, 0.5 * d.y};
+    return lo + (hm + sigma_apex * perp);
 }
 
 void finish_offcenter_mesh(OffCenterMesh2& mesh) {
@@ -553,10 +580,27 @@ double offcenter_min_angle_deg(double rho) {
     return std::asin(1.0 / (2.0 * rho)) * 180.0 / std::numbers::pi;
 }
 
+double offcenter_min_separation(const QuadtreeOptions<2>& domain,
+                                const OffCenterOptions& options) {
+    detail::check_rho(options, "offcenter_min_separation");
+    return detail::OffCenterKernel(domain.origin, domain.width, options).min_separation();
+}
+
+double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
+                                        const OffCenterOptions& options) {
+    double shortest2 = std::numeric_limits<double>::infinity();
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Vec2 d = mesh.points[t[k]] - mesh.points[t[(k + 1) % 3]];
+            shortest2 = std::min(shortest2, dot(d, d));
+        }
+    const detail::OffCenterKernel kernel(mesh.origin, mesh.width, options);
+    const double slack = std::isfinite(shortest2) ? kernel.slack(shortest2) : 0.0;
+    return offcenter_min_angle_deg(options.rho) - slack * 180.0 / std::numbers::pi;
+}
+
 OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree, const OffCenterOptions& options) {
-    if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
-        throw InvalidInput("offcenter_mesh: rho = " + std::to_string(options.rho) +
-                           " must be finite and > sqrt(2)");
+    detail::check_rho(options, "offcenter_mesh");
     OffCenterRefiner refiner(tree, options);
     return refiner.run();
 }
@@ -585,11 +629,12 @@ std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh) {
                               std::to_string(tri[(k + 1) % 3]) + ") used twice");
         }
     }
-    const long double want = static_cast<long double>(mesh.width) * mesh.width;
-    if (std::fabs(area2 / 2 - want) > 1e-12L * want)
-        bad.push_back("total area " + std::to_string(static_cast<double>(area2 / 2)) +
-                      " differs from the box area " + std::to_string(static_cast<double>(want)));
+    // The box the corners span: its far corner is origin + W rounded, as the mesh places it.
     const double x0 = mesh.origin.x, y0 = mesh.origin.y, x1 = x0 + mesh.width, y1 = y0 + mesh.width;
+    const long double want = (static_cast<long double>(x1) - x0) * (static_cast<long double>(y1) - y0);
+    if (std::fabs(area2 / 2 - want) > 1e-12L * want)
+        bad.push_back("total area " + detail::format_double(static_cast<double>(area2 / 2)) +
+                      " differs from the box area " + detail::format_double(static_cast<double>(want)));
     for (const auto& [e, c] : apex) {
         const auto twin = apex.find({e.second, e.first});
         const Vec2 &a = mesh.points[e.first], &b = mesh.points[e.second];

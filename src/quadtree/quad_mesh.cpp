@@ -10,6 +10,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "format.hpp"
 #include "leaf_mesh.hpp"
 
 namespace dynmesh {
@@ -88,11 +89,12 @@ std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
             bad.push_back("triangle " + std::to_string(t) + " is not counter-clockwise");
         area2 += twice_area(a, b, c);
     }
-    const long double want = static_cast<long double>(mesh.width) * mesh.width;
-    if (std::fabs(area2 / 2 - want) > 1e-12L * want)
-        bad.push_back("total area " + std::to_string(static_cast<double>(area2 / 2)) +
-                      " differs from the domain area " + std::to_string(static_cast<double>(want)));
+    // The box the vertices span: its far corner is origin + W rounded, as the mesh places it.
     const double x0 = mesh.origin.x, y0 = mesh.origin.y, x1 = x0 + mesh.width, y1 = y0 + mesh.width;
+    const long double want = (static_cast<long double>(x1) - x0) * (static_cast<long double>(y1) - y0);
+    if (std::fabs(area2 / 2 - want) > 1e-12L * want)
+        bad.push_back("total area " + detail::format_double(static_cast<double>(area2 / 2)) +
+                      " differs from the domain area " + detail::format_double(static_cast<double>(want)));
     for (const auto& [e, dirs] : edges) {
         const std::string name =
             "edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ")";

@@ -1,13 +1,17 @@
 #include "dynmesh/quadtree/quadtree.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <tuple>
 #include <unordered_set>
 #include <utility>
 
 #include "dynmesh/error.hpp"
+#include "format.hpp"
 
 namespace dynmesh {
 
@@ -59,17 +63,8 @@ const std::vector<std::array<int, D>>& block_k(int k) {
     return k == 2 ? v2 : v1;
 }
 
-template <int D>
-std::string fmt_point(const PointD<D>& p) {
-    std::string s = "(";
-    for (int i = 0; i < D; ++i) {
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", p[static_cast<std::size_t>(i)]);
-        if (i) s += ", ";
-        s += buf;
-    }
-    return s + ")";
-}
+using detail::format_double;
+using detail::format_point;
 
 }  // namespace
 
@@ -135,11 +130,59 @@ DynQuadtree<D>::DynQuadtree(const QuadtreeOptions<D>& options) : options_(option
     for (int i = 0; i < D; ++i)
         DYNMESH_CHECK(
             std::isfinite(options.origin[static_cast<std::size_t>(i)]),
-            "DynQuadtree: domain origin " + fmt_point<D>(options.origin) + " is not finite");
+            "DynQuadtree: domain origin " + format_point<D>(options.origin) + " is not finite");
     DYNMESH_CHECK(
         std::isfinite(options.width) && options.width > 0,
-        "DynQuadtree: domain width " + std::to_string(options.width) + " must be finite and > 0");
+        "DynQuadtree: domain width " + format_double(options.width) + " must be finite and > 0");
+    for (int i = 0; i < D; ++i)
+        DYNMESH_CHECK(std::isfinite(options.origin[static_cast<std::size_t>(i)] + options.width),
+                      "DynQuadtree: the domain box at " + format_point<D>(options.origin) +
+                          " of width " + format_double(options.width) + " overflows");
+    DYNMESH_CHECK(std::ldexp(options.width, -kLevels) >= DBL_MIN,
+                  "DynQuadtree: domain width " + format_double(options.width) +
+                      " is too small for the quadtree grid (needs W >= 2^52 * DBL_MIN)");
+    int e = 0;
+    dyadic_ = std::frexp(options.width, &e) == 0.5;
+    for (int i = 0; i < D && dyadic_; ++i) {
+        const double k = options.origin[static_cast<std::size_t>(i)] / (options.width / 8);
+        dyadic_ = std::floor(k) == k;
+    }
     nodes_.emplace(root_key(), Node{});
+}
+
+// ---- resolution -----------------------------------------------------------------------------
+
+template <int D>
+double DynQuadtree<D>::box_extent(const std::array<std::uint64_t, D>& lo,
+                                  const std::array<std::uint64_t, D>& hi) const {
+    const double unit = std::ldexp(options_.width, -kLevels);
+    double x = 0;
+    for (int i = 0; i < D; ++i) {
+        const double o = options_.origin[static_cast<std::size_t>(i)];
+        x = std::max({x, std::fabs(o + static_cast<double>(lo[i]) * unit),
+                      std::fabs(o + static_cast<double>(hi[i]) * unit)});
+    }
+    return x;
+}
+
+template <int D>
+bool DynQuadtree<D>::resolved(int level, double x) const {
+    if (level < 1) return false;
+    const double h = std::ldexp(options_.width, level - 1 - kLevels);
+    if (dyadic_) return x <= std::ldexp(std::min(h, options_.width / 8), 53);
+    const double ulp = std::nextafter(x, INFINITY) - x;
+    return h >= 0x1p13 * ulp;
+}
+
+template <int D>
+bool DynQuadtree<D>::is_resolved(const CellId<D>& c) const {
+    if (c.level < 0 || c.level > kLevels) return false;
+    std::array<std::uint64_t, D> lo{}, hi{};
+    for (int i = 0; i < D; ++i) {
+        lo[i] = c.index[i] << c.level;
+        hi[i] = (c.index[i] + 1) << c.level;
+    }
+    return resolved(c.level, box_extent(lo, hi));
 }
 
 template <int D>
@@ -165,7 +208,7 @@ template <int D>
 typename DynQuadtree<D>::GridPoint DynQuadtree<D>::grid_point(const Point& p) const {
     GridPoint g;
     DYNMESH_CHECK(snap(p, g) == InsertResult::Inserted,
-                  "DynQuadtree::grid_point: point " + fmt_point<D>(p) +
+                  "DynQuadtree::grid_point: point " + format_point<D>(p) +
                       " is not finite or not in the middle third of the domain");
     return g;
 }
@@ -246,7 +289,28 @@ InsertResult DynQuadtree<D>::insert(const Point& p) {
     for (Node* n : path) ++n->count;
     leaf.points.push_back({g, p});
     ++size_;
-    propagate(g, +1, path);
+    QuadtreeUpdateReport<D> before = std::move(last_update_);
+    const auto flips = settle(g, +1, path);
+    // Resolution: an insertion only splits cells; their children are the new leaves.
+    const bool refuse = std::any_of(flips.begin(), flips.end(), [&](const auto& f) {
+        for (int mask = 0; mask < (1 << D); ++mask) {
+            CellId<D> ch{f.first.level - 1, {}};
+            for (int i = 0; i < D; ++i) ch.index[i] = 2 * f.first.a[i] + ((mask >> i) & 1);
+            if (!is_resolved(ch)) return true;
+        }
+        return false;
+    });
+    if (refuse) {
+        // Undo: the exact mirror of the update restores every support (no cell was split).
+        leaf.points.pop_back();
+        for (Node* n : path) --n->count;
+        --size_;
+        [[maybe_unused]] const auto undone = settle(g, -1, path);
+        DYNMESH_ASSERT(undone.size() == flips.size(), "insert: rollback is not the mirror");
+        last_update_ = std::move(before);
+        return InsertResult::BeyondPrecision;
+    }
+    apply_flips(flips);
     return InsertResult::Inserted;
 }
 
@@ -262,7 +326,7 @@ EraseResult DynQuadtree<D>::erase(const Point& p) {
     leaf.points.erase(it);
     for (Node* n : path) --n->count;
     --size_;
-    propagate(g, -1, path);
+    apply_flips(settle(g, -1, path));
     return EraseResult::Erased;
 }
 
@@ -281,14 +345,17 @@ void DynQuadtree<D>::push_u_support(const Key& x, int delta, std::vector<Key>& b
 }
 
 template <int D>
-void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<Node*>& path) {
+std::vector<std::pair<typename DynQuadtree<D>::Key, bool>> DynQuadtree<D>::settle(
+    const GridPoint& g, int sign, const std::vector<Node*>& path) {
     last_update_ = {};
     const bool mesh = options_.mode == QuadtreeMode::Mesh;
     const int k = isolation_radius();
     std::vector<std::vector<Key>> buckets(kLevels + 1);
 
     // Step 1 (mesh mode): rule R follows |P| > 0, rule U follows the counts of the I-cells on
-    // p's path (counts already updated; an internal node is an I-cell).
+    // p's path (counts already updated). These are the internal nodes of the path, and, when
+    // insert() rolls back a refused insertion, also the cells settle() had just put in I
+    // (no leaf was split for them yet), found through their state.
     if (mesh) {
         const std::uint64_t now = sign > 0 ? 1 : 0;  // the count that means "crossed 0 <-> 1"
         if (size_ == now) {
@@ -300,11 +367,19 @@ void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<N
             ++last_update_.support_updates;
             buckets[kLevels].push_back(root);
         }
-        for (std::size_t depth = 0; depth < path.size() && !path[depth]->is_leaf; ++depth)
-            if (path[depth]->count == now) {
-                const Key x = cell_of(g, kLevels - static_cast<int>(depth));
-                push_u_support(x, sign, buckets[x.level]);
+        for (int j = kLevels; j >= 0; --j) {
+            const auto depth = static_cast<std::size_t>(kLevels - j);
+            const Key x = cell_of(g, j);
+            std::uint64_t c = 0;
+            if (depth < path.size() && !path[depth]->is_leaf) {
+                c = path[depth]->count;
+            } else {
+                const auto it = state_.find(x);
+                if (it == state_.end() || !it->second.in_i) break;
+                c = count_in(x);
             }
+            if (c == now) push_u_support(x, sign, buckets[x.level]);
+        }
     }
 
     // Step 2: crowding flags of the cells whose N_k block contains p, level by level downwards.
@@ -392,7 +467,11 @@ void DynQuadtree<D>::propagate(const GridPoint& g, int sign, const std::vector<N
             if (it->second.support == 0 && !it->second.in_i) state_.erase(it);
         }
     }
+    return flips;
+}
 
+template <int D>
+void DynQuadtree<D>::apply_flips(const std::vector<std::pair<Key, bool>>& flips) {
     // Step 4: apply the flips to the leaf structure, splits top-down, merges bottom-up.
     std::vector<Key> splits, merges;
     for (const auto& [x, in] : flips) (in ? splits : merges).push_back(x);
@@ -463,14 +542,14 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
             const InsertResult r = tree.snap(points[i], g);
             DYNMESH_CHECK(r != InsertResult::NotFinite,
                           "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              fmt_point<D>(points[i]) + " is not finite");
+                              format_point<D>(points[i]) + " is not finite");
             DYNMESH_CHECK(r != InsertResult::OutsideDomain,
                           "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              fmt_point<D>(points[i]) +
+                              format_point<D>(points[i]) +
                               " is outside the middle third of the domain");
             const auto [it, fresh] = seen.emplace(cell_of(g, 0), i);
             DYNMESH_CHECK(fresh, "DynQuadtree::build: point " + std::to_string(i) + " " +
-                                     fmt_point<D>(points[i]) + " duplicates point " +
+                                     format_point<D>(points[i]) + " duplicates point " +
                                      std::to_string(it->second));
             entries[i] = {g, points[i]};
         }
@@ -576,6 +655,44 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         leaf.points.push_back(e);
     }
     tree.size_ = entries.size();
+
+    // Resolution: name the point nearest to the smallest unresolved leaf (deterministic).
+    std::optional<CellId<D>> bad;
+    for (const auto& [k, n] : tree.nodes_) {
+        const CellId<D> c{k.level, k.a};
+        if (n.is_leaf && !tree.is_resolved(c) && (!bad || c < *bad)) bad = c;
+    }
+    if (bad) {
+        std::size_t best = 0;
+        std::uint64_t best_d = std::numeric_limits<std::uint64_t>::max();
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+            std::uint64_t d = 0;  // L∞ distance in grid units from the point to the leaf
+            for (int a = 0; a < D; ++a) {
+                const std::uint64_t lo = bad->index[a] << bad->level;
+                const std::uint64_t hi = lo + (std::uint64_t{1} << bad->level);
+                const std::uint64_t v = entries[i].grid[a];
+                d = std::max(d, v < lo ? lo - v : v >= hi ? v - hi + 1 : 0);
+            }
+            if (d < best_d) {
+                best_d = d;
+                best = i;
+            }
+        }
+        PointD<D> corner{};
+        for (int a = 0; a < D; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            corner[ua] = options.origin[ua] + static_cast<double>(bad->index[a] << bad->level) *
+                                                  std::ldexp(options.width, -kLevels);
+        }
+        throw InvalidInput(
+            "DynQuadtree::build: point " + std::to_string(best) + " " +
+            format_point<D>(points[best]) +
+            " is too close to other points for double precision at its coordinates: its tree "
+            "needs a cell of size " +
+            format_double(std::ldexp(options.width, bad->level - kLevels)) + " at " +
+            format_point<D>(corner) + ", below the coordinate resolution there" +
+            (tree.dyadic() ? "" : " (a dyadic domain, e.g. auto_domain(), resolves finer)"));
+    }
     return tree;
 }
 
@@ -708,6 +825,8 @@ std::vector<std::string> DynQuadtree<D>::check_invariants() const {
                 if (cell_of(e.grid, x.level) != x) bad.push_back(name(x) + ": point outside leaf");
             if (n.points.size() >= 2) bad.push_back(name(x) + ": self-crowded leaf");
             if (x.level < 1) bad.push_back(name(x) + ": leaf smaller than 2 grid units");
+            if (!is_resolved({x.level, x.a}))
+                bad.push_back(name(x) + ": leaf below the coordinate resolution");
         } else {
             ++internal;
             if (!n.points.empty()) bad.push_back(name(x) + ": internal cell holds points");

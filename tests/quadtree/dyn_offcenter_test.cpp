@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <numbers>
@@ -13,6 +14,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/domain.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 #include "quadtree_fixtures.hpp"
@@ -72,11 +74,11 @@ std::vector<Vec2> pool(Family family, std::size_t n, std::uint64_t seed, Vec2 o 
     return out;
 }
 
-/// mesh() of `dyn` against offcenter_mesh() of a fresh tree on the same points.
-void expect_matches_oracle(const DynOffCenterMesh2& dyn, const std::string& what) {
-    std::vector<Vec2> pts;
-    for (const auto& e : dyn.tree().points()) pts.push_back(e.second);
-    const auto fresh = DynQuadtree<2>::build(pts, dyn.tree().options());
+/// mesh() and the live mesh of `dyn` against offcenter_mesh() of a fresh tree built on
+/// `present`, the point list the test keeps.
+void expect_matches_oracle(const DynOffCenterMesh2& dyn, const std::vector<Vec2>& present,
+                           const std::string& what) {
+    const auto fresh = DynQuadtree<2>::build(present, dyn.tree().options());
     const OffCenterMesh2 want = offcenter_mesh(fresh, dyn.options());
     const OffCenterMesh2 got = dyn.mesh();
     ASSERT_EQ(got.points.size(), want.points.size()) << what;
@@ -91,6 +93,10 @@ void expect_matches_oracle(const DynOffCenterMesh2& dyn, const std::string& what
     EXPECT_EQ(got.stuck_pairs, want.stuck_pairs) << what;
     EXPECT_EQ(got.min_angle_deg, want.min_angle_deg) << what;
     EXPECT_EQ(dyn.vertex_count(), got.points.size()) << what;
+    EXPECT_EQ(testing_quadtree::live_coords<2>(dyn.current_mesh()),
+              testing_quadtree::simplex_coords<2>(want.points, want.triangles))
+        << what << ": the live mesh differs from the oracle";
+    EXPECT_EQ(dyn.current_mesh().vertex_count(), want.points.size()) << what;
 }
 
 void expect_quality(const DynOffCenterMesh2& dyn, const std::string& what) {
@@ -108,8 +114,11 @@ void expect_quality(const DynOffCenterMesh2& dyn, const std::string& what) {
                                std::fabs(mesh.origin.y + mesh.width), mesh.width});
     const double slack_deg =
         (1e-12 + 64 * 2.220446049250313e-16 * s / shortest) * 180 / std::numbers::pi;
-    EXPECT_GE(mesh.min_angle_deg, offcenter_min_angle_deg(dyn.options().rho) - slack_deg - 1e-9)
+    const double promised = offcenter_promised_min_angle_deg(mesh, dyn.options());
+    EXPECT_NEAR(promised, offcenter_min_angle_deg(dyn.options().rho) - slack_deg,
+                1e-9 * (1 + slack_deg))
         << what;
+    EXPECT_GE(mesh.min_angle_deg, promised - 1e-9) << what;
 }
 
 /// A random insert/erase walk over `pts`, compared with the oracle after every step.
@@ -131,7 +140,8 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
     }
     present = initial;
     DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(present, domain, options);
-    expect_matches_oracle(dyn, name + " build");
+    expect_matches_oracle(dyn, present, name + " build");
+    testing_quadtree::MeshMirror<2> mirror(dyn.current_mesh());
     for (int step = 0; step < steps; ++step) {
         const std::string what = name + " step " + std::to_string(step);
         if (present.empty() || rng.coin(0.55)) {
@@ -141,6 +151,7 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
                 present.push_back(p);
             } else {
                 ASSERT_EQ(r, InsertResult::Duplicate) << what;
+                continue;  // nothing changed: last_change() is still the previous update's
             }
         } else {
             const std::size_t k = rng.below(present.size());
@@ -148,7 +159,12 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
             present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
         }
         ASSERT_EQ(dyn.tree().size(), present.size()) << what;
-        expect_matches_oracle(dyn, what);
+        expect_matches_oracle(dyn, present, what);
+        if (::testing::Test::HasFailure()) return;
+        // A copy fed only with the deltas stays equal to the live mesh, slot for slot.
+        mirror.apply(dyn.last_change(), what);
+        mirror.expect_equals(dyn.current_mesh(), what);
+        EXPECT_EQ(dyn.last_update().triangles_added, dyn.last_change().added_simplices.size());
         if (::testing::Test::HasFailure()) return;
         EXPECT_EQ(dyn.last_update().full_recomputes, 0u) << what;
         if (step % check_every == check_every - 1) {
@@ -162,17 +178,19 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
 
 TEST(DynOffCenter, EmptyAndSmall) {
     DynOffCenterMesh2 dyn({}, {.rho = 1.5});
-    expect_matches_oracle(dyn, "empty");
+    expect_matches_oracle(dyn, {}, "empty");
     EXPECT_EQ(dyn.mesh().triangles.size(), 2u);
+    EXPECT_EQ(dyn.current_mesh().simplex_count(), 2u);
+    EXPECT_TRUE(dyn.last_change().empty());
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
     ASSERT_EQ(dyn.insert({0.5, 0.5}), InsertResult::Inserted);
-    expect_matches_oracle(dyn, "one point");
+    expect_matches_oracle(dyn, {{0.5, 0.5}}, "one point");
     ASSERT_EQ(dyn.insert({0.4, 0.41}), InsertResult::Inserted);
-    expect_matches_oracle(dyn, "two points");
+    expect_matches_oracle(dyn, {{0.5, 0.5}, {0.4, 0.41}}, "two points");
     ASSERT_EQ(dyn.erase({0.5, 0.5}), EraseResult::Erased);
-    expect_matches_oracle(dyn, "one point again");
+    expect_matches_oracle(dyn, {{0.4, 0.41}}, "one point again");
     ASSERT_EQ(dyn.erase({0.4, 0.41}), EraseResult::Erased);
-    expect_matches_oracle(dyn, "empty again");
+    expect_matches_oracle(dyn, {}, "empty again");
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
 }
 
@@ -182,13 +200,16 @@ TEST(DynOffCenter, LatticeIsDegenerateButCanonical) {
     for (int i = 0; i < 5; ++i)
         for (int j = 0; j < 5; ++j) grid.push_back({0.4 + 0.05 * i, 0.4 + 0.05 * j});
     DynOffCenterMesh2 dyn({}, {.rho = 1.5});
+    std::vector<Vec2> present;
     for (const Vec2& p : grid) {
         ASSERT_EQ(dyn.insert(p), InsertResult::Inserted);
-        expect_matches_oracle(dyn, "lattice insert");
+        present.push_back(p);
+        expect_matches_oracle(dyn, present, "lattice insert");
     }
     for (std::size_t k = 0; k < grid.size(); k += 2) {
         ASSERT_EQ(dyn.erase(grid[k]), EraseResult::Erased);
-        expect_matches_oracle(dyn, "lattice erase");
+        present.erase(std::find(present.begin(), present.end(), grid[k]));
+        expect_matches_oracle(dyn, present, "lattice erase");
     }
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
     expect_quality(dyn, "lattice");
@@ -273,27 +294,128 @@ TEST(DynOffCenter, ErasingWithOtherBitsOfTheSamePointUsesTheStoredOne) {
     ASSERT_EQ(dyn.insert({0.5, 0.5}), InsertResult::Inserted);
     ASSERT_EQ(dyn.insert({0.45, 0.55}), InsertResult::Inserted);
     ASSERT_EQ(dyn.erase({0.5 + 1e-17, 0.5}), EraseResult::Erased);
-    expect_matches_oracle(dyn, "erase by snapped twin");
+    expect_matches_oracle(dyn, {{0.45, 0.55}}, "erase by snapped twin");
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
 }
 
-TEST(DynOffCenter, UpdatesAreLocal) {
-    // One update re-runs a small part of the trace: far fewer evaluations than vertices.
-    const auto pts = pool(Family::Uniform, 3000, 14);
+/// Work of one update (evaluations re-run + best-first queries + triangles changed), averaged
+/// over insert/erase pairs of the same query points at fixed density and growing n: flat.
+double mean_offcenter_work(std::size_t n) {
+    std::vector<Vec2> pts, queries;
+    testing_quadtree::fixed_density_points<2>(n, 500, 1.0 / 12, 60, 17, pts, queries);
     DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, {}, {.rho = 1.5});
-    Rng rng(15);
-    std::size_t worst = 0, total = 0;
-    for (int k = 0; k < 40; ++k) {
-        const Vec2 p{rng.uniform(0.34, 0.66), rng.uniform(0.34, 0.66)};
-        if (dyn.insert(p) != InsertResult::Inserted) continue;
-        worst = std::max(worst, dyn.last_update().evaluations);
-        total += dyn.last_update().evaluations;
-        ASSERT_EQ(dyn.erase(p), EraseResult::Erased);
-        worst = std::max(worst, dyn.last_update().evaluations);
-        total += dyn.last_update().evaluations;
-    }
-    EXPECT_LT(worst, dyn.vertex_count() / 10) << "total " << total;
-    expect_matches_oracle(dyn, "after local updates");
+    return testing_quadtree::mean_update_work(
+        dyn, queries,
+        [](const DynOffCenterMesh2& m) {
+            const OffCenterUpdateReport& r = m.last_update();
+            return static_cast<double>(r.evaluations + r.queries + r.triangles_added +
+                                       r.triangles_removed);
+        },
+        100);
+}
+
+TEST(DynOffCenter, WorkPerUpdateDoesNotGrowWithN) {
+    const double w1 = mean_offcenter_work(500);
+    const double w16 = mean_offcenter_work(8000);  // side 1/3: the middle third
+    EXPECT_GT(w1, 0);
+    EXPECT_LT(w16, 1.3 * w1) << "n = 500: " << w1 << ", n = 8000: " << w16;
+}
+
+/// Points 10^3 .. 10^6 ulps apart (of their coordinates) on a line, a diagonal, a small grid
+/// or a circle, near 0.5 and 1000, on their automatic (dyadic) box: the dynamic mesh
+/// equals the oracle after the build and after erasing and re-inserting points. The searches
+/// used to offset candidates from the pair's midpoint rounded in absolute coordinates (an ulp
+/// of the coordinates, up to 1e-3 of such a pair, against tolerances of 1e-9 of it): they
+/// missed Delaunay neighbours, so the trace differed from the static run (and, a few dozen
+/// ulps apart, the star walk of a creation evaluation did not close).
+TEST(DynOffCenter, ClosePointsFarFromTheOriginMatchTheOracle) {
+    for (double o : {0.5, 1000.0})
+        for (double ratio : {3.2e3, 1e5, 1e6})
+            for (int layout = 0; layout < 5; ++layout) {
+                const double ulp = std::nextafter(std::fabs(o), INFINITY) - std::fabs(o);
+                const double s = ratio * ulp;
+                std::vector<Vec2> pts;
+                for (int i = 0; i < 60; ++i) {
+                    const double a = 0.1047 * i;
+                    const Vec2 offsets[] = {{i * s, 0},
+                                            {0, i * s},
+                                            {i * s, i * s},
+                                            {(i % 8) * s, (i / 8) * s},
+                                            {10 * s * std::cos(a), 10 * s * std::sin(a)}};
+                    pts.push_back(Vec2{o, 0.7 * o} + offsets[layout]);
+                }
+                const QuadtreeOptions<2> box = auto_domain<2>(pts);
+                {
+                    const double rho = layout % 2 ? 2.0 : 1.5;
+                    const std::string what = "o " + std::to_string(o) + " ratio " +
+                                             std::to_string(ratio) + " layout " +
+                                             std::to_string(layout) + " rho " + std::to_string(rho);
+                    DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, box, {.rho = rho});
+                    expect_matches_oracle(dyn, pts, what + " build");
+                    for (std::size_t k = 3; k < pts.size(); k += 7) {
+                        ASSERT_EQ(dyn.erase(pts[k]), EraseResult::Erased) << what;
+                        ASSERT_EQ(dyn.insert(pts[k]), InsertResult::Inserted) << what;
+                    }
+                    expect_matches_oracle(dyn, pts, what);
+                    expect_quality(dyn, what);
+                    if (::testing::Test::HasFailure()) return;
+                }
+            }
+}
+
+/// 200 points 1e-13 apart on a diagonal at (1, 0.7) (about 450 ulps): the static run used to
+/// compute σ_t of a pair from its rounded absolute midpoint (an error of 1e-3 of σ_t), so it
+/// took a circumcentre where the dynamic search, which measures relative to the pair, found no
+/// vertex below the apex: the two meshes differed.
+TEST(DynOffCenter, StaticAndDynamicAgreeOnApexVersusCircumcentre) {
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 200; ++i) pts.push_back({1.0 + i * 1e-13, 0.7 + i * 1e-13});
+    const DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, auto_domain<2>(pts), {.rho = 1.5});
+    expect_matches_oracle(dyn, pts, "diagonal at (1, 0.7)");
+    expect_quality(dyn, "diagonal at (1, 0.7)");
+}
+
+/// Inputs closer than the tree's resolution (a non-dyadic box) or than
+/// offcenter_min_separation() (any box) are refused: build() and offcenter_mesh() name them,
+/// insert() returns BeyondPrecision without a change.
+TEST(DynOffCenter, RefusesPointsBeyondPrecision) {
+    const QuadtreeOptions<2> box{.origin = {99.9, 69.9}, .width = 0.24};  // not dyadic
+    EXPECT_THROW((void)DynOffCenterMesh2::build(std::vector<Vec2>{{100, 70}, {100 + 1e-12, 70}},
+                                                box, {.rho = 2}),
+                 InvalidInput);
+    DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(
+        std::vector<Vec2>{{100, 70}, {100.01, 70.02}}, box, {.rho = 2});
+    const OffCenterMesh2 before = dyn.mesh();
+    const std::size_t changed = dyn.last_change().added_simplices.size();
+    const std::size_t evaluations = dyn.last_update().evaluations;
+    EXPECT_EQ(dyn.insert({100 + 1e-12, 70}), InsertResult::BeyondPrecision);
+    // On the unit box (dyadic) the tree resolves points a quantum apart, but the refinement
+    // needs offcenter_min_separation() (about 8e-14 at rho = 1.5).
+    const double sep = offcenter_min_separation({}, {.rho = 1.5});
+    EXPECT_GT(sep, 1e-14);
+    EXPECT_LT(sep, 1e-12);
+    DynOffCenterMesh2 unit = DynOffCenterMesh2::build(
+        std::vector<Vec2>{{0.5, 0.5}, {0.4, 0.45}}, {}, {.rho = 1.5});
+    const OffCenterMesh2 unit_before = unit.mesh();
+    EXPECT_EQ(unit.insert({0.5 + 0.5 * sep, 0.5}), InsertResult::BeyondPrecision);
+    EXPECT_EQ(unit.insert({0.5, 0.5 + 1e-17}), InsertResult::Duplicate);  // snaps to (0.5, 0.5)
+    EXPECT_EQ(unit.mesh().points, unit_before.points);
+    EXPECT_TRUE(unit.last_change().empty());  // as after build(): the refusals changed nothing
+    EXPECT_THROW((void)DynOffCenterMesh2::build(
+                     std::vector<Vec2>{{0.5, 0.5}, {0.5 + 0.5 * sep, 0.5}}, {}, {.rho = 1.5}),
+                 InvalidInput);
+    EXPECT_THROW((void)offcenter_mesh(DynQuadtree<2>::build(std::vector<Vec2>{
+                                          {0.5, 0.5}, {0.5, 0.5 + 0.5 * sep}}),
+                                      {.rho = 1.5}),
+                 InvalidInput);
+    EXPECT_EQ(unit.insert({0.5 + 2 * sep, 0.5}), InsertResult::Inserted);
+    EXPECT_TRUE(unit.check_invariants().empty()) << joined(unit.check_invariants());
+    // Nothing changed in the refused updates of `dyn`.
+    EXPECT_EQ(dyn.mesh().points, before.points);
+    EXPECT_EQ(dyn.mesh().triangles, before.triangles);
+    EXPECT_EQ(dyn.last_change().added_simplices.size(), changed);
+    EXPECT_EQ(dyn.last_update().evaluations, evaluations);
+    EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
 }
 
 /// A longer run over every family: 2 seeds by default; DYNOFF_STRESS=<seeds> asks for more

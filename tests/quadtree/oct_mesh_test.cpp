@@ -130,19 +130,23 @@ TEST(OctMesh, NonUnitDomain) {
     expect_good_mesh(DynQuadtree<3>::build(pts, options), "domain [-3,3]x[10,16]x[0.25,6.25]");
 }
 
+/// As QuadMesh.HistoryIndependentAfterInsertsAndErases: the updated mesh-mode tree's mesh
+/// against a from-scratch build on the test's own point list.
 TEST(OctMesh, HistoryIndependentAfterInsertsAndErases) {
     for (std::uint64_t seed : {11u, 12u}) {
         auto pool = uniform_points(30, seed);
         const auto cl = clustered_points(seed);
         pool.insert(pool.end(), cl.begin(), cl.end());
         Rng rng(seed * 7);
-        DynQuadtree<3> tree;
+        DynQuadtree<3> tree({.mode = QuadtreeMode::Mesh});
         random_walk<3>(tree, pool, 120, rng, [&](const std::vector<Vec3>& present, int step) {
             if (step % 60 == 59) {
                 const std::string what =
                     "seed " + std::to_string(seed) + " step " + std::to_string(step);
                 const OctMesh3 dynamic = oct_mesh(tree);
-                EXPECT_TRUE(dynamic == oct_mesh(DynQuadtree<3>::build(present))) << what;
+                const auto fresh = DynQuadtree<3>::build(present, {.mode = QuadtreeMode::Mesh});
+                EXPECT_EQ(tree.canonical_dump(), fresh.canonical_dump()) << what;
+                EXPECT_TRUE(dynamic == oct_mesh(fresh)) << what;
                 if (step == 119) {
                     EXPECT_TRUE(check_oct_mesh(dynamic).empty()) << what;
                 }
@@ -158,6 +162,16 @@ TEST(OctMesh, InsertionOrderDoesNotMatter) {
     DynQuadtree<3> tree;
     for (const Vec3& p : pts) ASSERT_EQ(tree.insert(p), InsertResult::Inserted);
     EXPECT_TRUE(a == oct_mesh(tree));
+}
+
+/// As QuadMesh.CheckerMeasuresTheBoxTheCornersSpan, for the volume.
+TEST(OctMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<3> o{.origin = {0.5, 0.25, 0.75}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);
+    const std::vector<Vec3> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9, 0.75 + 1.4e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9, 0.75 + 1.8e-9}};
+    const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(pts, o));
+    EXPECT_TRUE(check_oct_mesh(mesh).empty()) << joined(check_oct_mesh(mesh));
 }
 
 TEST(OctMesh, CheckerFindsBrokenMeshes) {

@@ -11,6 +11,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
+#include "dynmesh/quadtree/dyn_offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 #include "quadtree_fixtures.hpp"
 
@@ -130,42 +131,54 @@ TEST(OffCenterMesh, CircumcentreAblationIsValidToo) {
     EXPECT_LE(max_radius_edge(mesh), 1.5 * (1 + 1e-8));
 }
 
+/// The off-center mesh maintained by DynOffCenterMesh2 through random inserts and erases
+/// equals offcenter_mesh() of a tree built from scratch on the point list the test keeps
+/// itself (in reverse order); erase then re-insert restores it.
 TEST(OffCenterMesh, HistoryIndependent) {
     for (std::uint64_t seed : {21u, 22u}) {
         Rng rng(seed);
         const auto pool = uniform_points(150, seed);
-        DynQuadtree<2> tree;
-        std::vector<Vec2> present;
-        for (int step = 0; step < 400; ++step) {
-            if (present.empty() || rng.coin(0.6)) {
-                const Vec2& p = pool[rng.below(pool.size())];
-                if (tree.insert(p) == InsertResult::Inserted) present.push_back(p);
-            } else {
-                const std::size_t k = rng.below(present.size());
-                ASSERT_EQ(tree.erase(present[k]), EraseResult::Erased);
-                present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
-            }
-        }
-        std::vector<Vec2> shuffled = present;
-        std::reverse(shuffled.begin(), shuffled.end());
-        const auto fresh = DynQuadtree<2>::build(shuffled);
         for (double rho : {1.5, 2.0}) {
-            const OffCenterMesh2 a = offcenter_mesh(tree, {.rho = rho});
-            const OffCenterMesh2 b = offcenter_mesh(fresh, {.rho = rho});
+            DynOffCenterMesh2 dyn({}, {.rho = rho});
+            std::vector<Vec2> present;
+            for (int step = 0; step < 250; ++step) {
+                if (present.empty() || rng.coin(0.6)) {
+                    const Vec2& p = pool[rng.below(pool.size())];
+                    if (dyn.insert(p) == InsertResult::Inserted) present.push_back(p);
+                } else {
+                    const std::size_t k = rng.below(present.size());
+                    ASSERT_EQ(dyn.erase(present[k]), EraseResult::Erased);
+                    present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
+                }
+            }
+            std::vector<Vec2> shuffled = present;
+            std::reverse(shuffled.begin(), shuffled.end());
+            const OffCenterMesh2 a = dyn.mesh();
+            const OffCenterMesh2 b = offcenter_mesh(DynQuadtree<2>::build(shuffled), {.rho = rho});
             EXPECT_EQ(a.points, b.points) << "seed " << seed;
             EXPECT_EQ(a.triangles, b.triangles) << "seed " << seed;
             EXPECT_EQ(a.input_vertices, b.input_vertices) << "seed " << seed;
             EXPECT_EQ(a.steiner, b.steiner) << "seed " << seed;
+            // Erase then re-insert a point restores the identical mesh.
+            ASSERT_FALSE(present.empty());
+            ASSERT_EQ(dyn.erase(present.front()), EraseResult::Erased);
+            ASSERT_EQ(dyn.insert(present.front()), InsertResult::Inserted);
+            const OffCenterMesh2 after = dyn.mesh();
+            EXPECT_EQ(a.points, after.points);
+            EXPECT_EQ(a.triangles, after.triangles);
         }
-        // Erase then re-insert a point restores the identical mesh.
-        ASSERT_FALSE(present.empty());
-        const OffCenterMesh2 before = offcenter_mesh(tree, {.rho = 1.5});
-        ASSERT_EQ(tree.erase(present.front()), EraseResult::Erased);
-        ASSERT_EQ(tree.insert(present.front()), InsertResult::Inserted);
-        const OffCenterMesh2 after = offcenter_mesh(tree, {.rho = 1.5});
-        EXPECT_EQ(before.points, after.points);
-        EXPECT_EQ(before.triangles, after.triangles);
     }
+}
+
+/// As QuadMesh.CheckerMeasuresTheBoxTheCornersSpan, for the off-center mesh's box.
+TEST(OffCenterMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<2> o{.origin = {0.5, 0.25}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);
+    const std::vector<Vec2> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9},
+                                {0.5 + 1.5e-9, 0.25 + 1.9e-9}};
+    const OffCenterMesh2 mesh = offcenter_mesh(DynQuadtree<2>::build(pts, o), {.rho = 1.5});
+    EXPECT_TRUE(check_offcenter_mesh(mesh).empty()) << joined(check_offcenter_mesh(mesh));
 }
 
 TEST(OffCenterMesh, RejectsBadRho) {

@@ -114,23 +114,40 @@ void expect_same_mesh(const QuadMesh2& a, const QuadMesh2& b, const std::string&
     EXPECT_EQ(a.triangles, b.triangles) << what;
 }
 
+/// The mesh of a mesh-mode tree updated by random inserts and erases (quad_mesh() reads that
+/// tree's leaves directly) equals the mesh of a tree built from scratch on the point list the
+/// test keeps itself.
 TEST(QuadMesh, HistoryIndependentAfterInsertsAndErases) {
     for (std::uint64_t seed : {11u, 12u}) {
         auto pool = uniform_points(150, seed);
         const auto cl = clustered_points(seed);
         pool.insert(pool.end(), cl.begin(), cl.end());
         Rng rng(seed * 7);
-        DynQuadtree<2> tree;
+        DynQuadtree<2> tree({.mode = QuadtreeMode::Mesh});
         random_walk<2>(tree, pool, 400, rng, [&](const std::vector<Vec2>& present, int step) {
             if (step % 100 == 99) {
                 const std::string what =
                     "seed " + std::to_string(seed) + " step " + std::to_string(step);
                 const QuadMesh2 dynamic = quad_mesh(tree);
-                expect_same_mesh(dynamic, quad_mesh(DynQuadtree<2>::build(present)), what);
+                const auto fresh = DynQuadtree<2>::build(present, {.mode = QuadtreeMode::Mesh});
+                EXPECT_EQ(tree.canonical_dump(), fresh.canonical_dump()) << what;
+                expect_same_mesh(dynamic, quad_mesh(fresh), what);
                 EXPECT_TRUE(check_quad_mesh(dynamic).empty()) << what;
             }
         });
     }
+}
+
+/// A box of width 3e-9 at (0.5, 0.25) (not dyadic): its far corner origin + W rounds, by up to
+/// 4e-8 of W. The checker measures the box the mesh's corners span, not W².
+TEST(QuadMesh, CheckerMeasuresTheBoxTheCornersSpan) {
+    const QuadtreeOptions<2> o{.origin = {0.5, 0.25}, .width = 3e-9};
+    ASSERT_NE((o.origin.x + o.width) - o.origin.x, o.width);  // the premise: W rounds there
+    const std::vector<Vec2> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9},
+                                {0.5 + 1.7e-9, 0.25 + 1.5e-9},
+                                {0.5 + 1.5e-9, 0.25 + 1.9e-9}};
+    const QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(pts, o));
+    EXPECT_TRUE(check_quad_mesh(mesh).empty()) << joined(check_quad_mesh(mesh));
 }
 
 TEST(QuadMesh, CheckerFindsBrokenMeshes) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <deque>
 #include <limits>
 #include <map>
@@ -533,6 +534,185 @@ TEST(DynQuadtree, CustomDomain) {
     EXPECT_TRUE(t.check_invariants().empty());
     EXPECT_EQ(Tree<2>::build(pts, opt).canonical_dump(), t.canonical_dump());
     EXPECT_NE(Tree<2>::build(pts, opt).canonical_dump(), Tree<2>::build({}).canonical_dump());
+}
+
+/// Tree work of one update (support messages, crowding flips, splits, merges), averaged over
+/// insert/erase pairs of the same query points at fixed density and growing n.
+template <int D>
+double mean_tree_work(std::size_t n, std::size_t n0, double side0, QuadtreeMode mode) {
+    std::vector<PointD<D>> pts, queries;
+    fixed_density_points<D>(n, n0, side0, 300, 91, pts, queries);
+    QuadtreeOptions<D> options;
+    options.mode = mode;
+    Tree<D> t = Tree<D>::build(pts, options);
+    return mean_update_work(
+        t, queries,
+        [](const Tree<D>& tree) {
+            const auto& r = tree.last_update();
+            return static_cast<double>(r.support_updates + r.crowding_changes + r.split.size() +
+                                       r.merged.size());
+        },
+        400);
+}
+
+TEST(DynQuadtree, WorkPerUpdateDoesNotGrowWithN2D) {
+    for (QuadtreeMode mode : {QuadtreeMode::Paper, QuadtreeMode::Mesh}) {
+        const double w1 = mean_tree_work<2>(1000, 1000, 1.0 / 12, mode);
+        const double w16 = mean_tree_work<2>(16000, 1000, 1.0 / 12, mode);
+        EXPECT_GT(w1, 0);
+        EXPECT_LT(w16, 1.25 * w1) << "n = 1000: " << w1 << ", n = 16000: " << w16;
+    }
+}
+
+TEST(DynQuadtree, WorkPerUpdateDoesNotGrowWithN3D) {
+    const double w1 = mean_tree_work<3>(500, 500, 1.0 / 12, QuadtreeMode::Paper);
+    const double w8 = mean_tree_work<3>(4000, 500, 1.0 / 6, QuadtreeMode::Paper);
+    EXPECT_GT(w1, 0);
+    EXPECT_LT(w8, 1.25 * w1) << "n = 500: " << w1 << ", n = 4000: " << w8;
+}
+
+// ---- resolution (quadtree.hpp, "Resolution") ------------------------------------------------
+
+TEST(DynQuadtree, DyadicDomains) {
+    EXPECT_TRUE(Tree<2>().dyadic());
+    EXPECT_TRUE(Tree<2>({.origin = {-0.25, 1.5}, .width = 2.0}).dyadic());
+    EXPECT_TRUE(Tree<3>({.origin = {0.0, -3.0, 0.5}, .width = 4.0}).dyadic());
+    EXPECT_FALSE(Tree<2>({.origin = {0.1, 0.0}, .width = 1.0}).dyadic());  // origin off W/8
+    EXPECT_FALSE(Tree<2>({.origin = {0.0, 0.0}, .width = 3.0}).dyadic());  // not a power of 2
+}
+
+TEST(DynQuadtree, RejectsDomainsWithoutAGrid) {
+    EXPECT_THROW(Tree<2>({.origin = {0, 0}, .width = 1e-300}), InvalidInput);  // unit subnormal
+    EXPECT_THROW(Tree<2>({.origin = {1.7e308, 0}, .width = 1e308}), InvalidInput);  // overflow
+    EXPECT_NO_THROW(Tree<2>({.origin = {0, 0}, .width = 1e-290}));
+}
+
+/// A refused insertion changes nothing: tree, counts, last_update(); in both modes.
+template <int D>
+void check_refusal_unchanged(QuadtreeMode mode) {
+    QuadtreeOptions<D> o;
+    for (int d = 0; d < D; ++d) o.origin[static_cast<std::size_t>(d)] = 0.1;
+    o.width = 3.0;  // not dyadic: lattice positions are rounded
+    o.mode = mode;
+    Tree<D> t(o);
+    const auto a = make_point<D>({1.5, 1.5, 1.5});
+    ASSERT_EQ(t.insert(a), InsertResult::Inserted);
+    ASSERT_EQ(t.insert(make_point<D>({1.2, 1.8, 1.4})), InsertResult::Inserted);
+    const std::string dump = t.canonical_dump();
+    const auto split = t.last_update().split;
+    const std::size_t messages = t.last_update().support_updates;
+    for (double d : {1e-14, 1e-12, 2e-12}) {
+        PointD<D> b = a;
+        b[0] += d;
+        EXPECT_EQ(t.insert(b), InsertResult::BeyondPrecision) << d;
+        EXPECT_FALSE(t.contains(b)) << d;
+        EXPECT_EQ(t.size(), 2u);
+        EXPECT_EQ(t.canonical_dump(), dump) << d;
+        EXPECT_EQ(t.last_update().split, split) << d;
+        EXPECT_EQ(t.last_update().support_updates, messages) << d;
+        const auto bad = t.check_invariants();
+        ASSERT_TRUE(bad.empty()) << joined(bad);
+    }
+    PointD<D> far = a;
+    far[0] += 1e-8;
+    EXPECT_EQ(t.insert(far), InsertResult::Inserted);
+    EXPECT_TRUE(t.check_invariants().empty());
+}
+TEST(DynQuadtree, RefusalLeavesTheTreeUnchanged2D) {
+    check_refusal_unchanged<2>(QuadtreeMode::Paper);
+    check_refusal_unchanged<2>(QuadtreeMode::Mesh);
+}
+TEST(DynQuadtree, RefusalLeavesTheTreeUnchanged3D) {
+    check_refusal_unchanged<3>(QuadtreeMode::Paper);
+    check_refusal_unchanged<3>(QuadtreeMode::Mesh);
+}
+
+/// Acceptance is a property of the point set: an insertion is refused exactly when build() of
+/// the resulting set throws, over random walks with pairs around the resolution threshold.
+template <int D>
+void check_resolution_is_a_set_property(QuadtreeMode mode, std::uint64_t seed, int steps = 150) {
+    QuadtreeOptions<D> o;
+    for (int d = 0; d < D; ++d) o.origin[static_cast<std::size_t>(d)] = -0.7;
+    o.width = 5.0;  // not dyadic
+    o.mode = mode;
+    Rng rng(seed);
+    std::vector<PointD<D>> pool;
+    for (int i = 0; i < 24; ++i) {
+        PointD<D> p;
+        for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] = rng.uniform(1.2, 2.6);
+        pool.push_back(p);
+        for (int k = 0; k < 2; ++k) {  // partners 10^-13 .. 10^-10 away (threshold ~1e-11)
+            PointD<D> q = p;
+            for (int d = 0; d < D; ++d)
+                q[static_cast<std::size_t>(d)] += std::pow(10.0, -rng.uniform(10, 13)) *
+                                                  rng.uniform(-1, 1);
+            pool.push_back(q);
+        }
+    }
+    Tree<D> t(o);
+    std::vector<PointD<D>> present;
+    std::size_t refused = 0, accepted = 0;
+    for (int step = 0; step < steps; ++step) {
+        const std::string what = "seed " + std::to_string(seed) + " step " + std::to_string(step);
+        if (!present.empty() && rng.coin(0.3)) {
+            const std::size_t k = rng.below(present.size());
+            ASSERT_EQ(t.erase(present[k]), EraseResult::Erased) << what;
+            present.erase(present.begin() + static_cast<std::ptrdiff_t>(k));
+            continue;
+        }
+        const PointD<D> p = pool[rng.below(pool.size())];
+        if (t.contains(p)) continue;
+        std::vector<PointD<D>> with = present;
+        with.push_back(p);
+        bool builds = true;
+        try {
+            (void)Tree<D>::build(with, o);
+        } catch (const InvalidInput&) {
+            builds = false;
+        }
+        const InsertResult r = t.insert(p);
+        if (r == InsertResult::Duplicate) continue;
+        ASSERT_EQ(r == InsertResult::Inserted, builds) << what;
+        ASSERT_TRUE(r == InsertResult::Inserted || r == InsertResult::BeyondPrecision) << what;
+        if (r == InsertResult::Inserted) {
+            present.push_back(p);
+            ++accepted;
+        } else {
+            ++refused;
+        }
+        const auto bad = t.check_invariants();
+        ASSERT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
+    }
+    EXPECT_GT(refused, static_cast<std::size_t>(steps / 30)) << "the walk never reached the threshold";
+    EXPECT_GT(accepted, static_cast<std::size_t>(steps / 8));
+    EXPECT_EQ(t.canonical_dump(), Tree<D>::build(present, o).canonical_dump());
+}
+TEST(DynQuadtree, ResolutionIsAPropertyOfThePointSet2D) {
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        check_resolution_is_a_set_property<2>(QuadtreeMode::Paper, seed);
+        check_resolution_is_a_set_property<2>(QuadtreeMode::Mesh, seed + 10);
+    }
+}
+TEST(DynQuadtree, ResolutionIsAPropertyOfThePointSet3D) {
+    check_resolution_is_a_set_property<3>(QuadtreeMode::Paper, 4, 60);
+    check_resolution_is_a_set_property<3>(QuadtreeMode::Mesh, 5, 30);
+}
+
+TEST(DynQuadtree, BuildNamesTheUnresolvedPoint) {
+    const QuadtreeOptions<2> o{.origin = {0.1, 0.1}, .width = 3.0};
+    const std::vector<Vec2> pts{{1.2, 1.3}, {1.9, 1.9}, {1.5, 1.5}, {1.5 + 1e-13, 1.5}};
+    try {
+        (void)Tree<2>::build(pts, o);
+        FAIL() << "build accepted points 1e-13 apart on a rounded lattice";
+    } catch (const InvalidInput& e) {
+        const std::string msg = e.what();
+        EXPECT_TRUE(msg.find("point 2 ") != std::string::npos ||
+                    msg.find("point 3 ") != std::string::npos)
+            << msg;
+        EXPECT_NE(msg.find("resolution"), std::string::npos) << msg;
+    }
+    // The unit box is dyadic: the same spacing is resolved there.
+    EXPECT_NO_THROW((void)Tree<2>::build(std::vector<Vec2>{{0.5, 0.5}, {0.5 + 1e-13, 0.5}}));
 }
 
 TEST(DynQuadtree, LeafSizeTracksNearestNeighbourDistance) {

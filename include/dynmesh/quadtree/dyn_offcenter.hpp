@@ -41,6 +41,14 @@
 ///   * The output Delaunay triangulation (CGAL Delaunay_triangulation_2) is updated by removing
 ///     and inserting the symmetric difference of the vertex sets; mesh() then canonicalises
 ///     degenerate cells exactly as offcenter_mesh() does (detail::finish_offcenter_mesh).
+///   * The live mesh (current_mesh(), live_mesh.hpp) holds the same canonical triangles with
+///     stable ids and is updated locally: the Delaunay cells (maximal sets of triangles with
+///     one empty circumcircle) incident to a vertex that was inserted or removed, or to one of
+///     its neighbours at that moment, are re-derived from the triangulation, each as a fan from
+///     its smallest vertex in mesh()'s index order (inputs by snapped coordinates, then Steiner
+///     points by (x, y)); cells whose ring did not change keep their triangles and ids. Every
+///     cell created or destroyed by the update has such a vertex, so the rest is unchanged.
+///     last_change() lists the triangles and vertices removed and added.
 ///
 /// Deviations and limits (see also the .cpp):
 ///   * The static algorithm was made canonical where it used to depend on CGAL's choice among
@@ -59,11 +67,15 @@
 ///     empty trace.
 ///   * Read regions are conservative (enlarged by a relative 1e-9 and by the angle slack), so
 ///     some re-runs find the same outcome; they are counted in `evaluations`.
-///   * mesh() costs O(n + m) (it returns the whole mesh); the stored state and the triangulation
-///     are updated locally.
+///   * mesh() costs O(n + m) (it returns the whole canonical mesh); the stored state, the
+///     triangulation and current_mesh() are updated locally.
+///   * Precision: the best-first searches measure every candidate relative to the pair's first
+///     endpoint (differences of nearby doubles are exact), never to a rounded absolute midpoint,
+///     and read-region discs are enlarged by the rounding of their centres, so pairs of any
+///     resolvable length (offcenter_min_separation()) are searched exactly.
 ///   * A read region that would be unbounded (only when the closed-leaf slack exceeds θ_min,
-///     i.e. pairs near the input quantum at extreme spread) is registered as global: such an
-///     evaluation is re-run on every change stamped before it. Correct, but not local.
+///     which offcenter_min_separation() now rules out for input pairs) is registered as global:
+///     such an evaluation is re-run on every change stamped before it. Correct, but not local.
 ///   * build() is slower than offcenter_mesh() (best-first searches instead of one CGAL
 ///     triangulation: about 6–8× at n = 1e4–1e5) and the trace costs memory per vertex.
 ///   * Measured (offcenter_update_bench, ρ = 1.5, one update = an insert or an erase):
@@ -79,6 +91,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/quadtree/live_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -89,11 +102,9 @@ struct OffCenterUpdateReport {
     std::size_t steiner_added = 0;      // Steiner points (incl. boundary midpoints) now present
                                         // that were not before
     std::size_t steiner_removed = 0;    // ... present before and not now
-    std::size_t triangles_added = 0;    // Delaunay faces created by the incremental CGAL update,
-                                        // from vertex degrees (inserting a degree-d vertex
-                                        // creates d faces and destroys d − 2; removing one the
-                                        // reverse; approximate for box-boundary vertices)
-    std::size_t triangles_removed = 0;  // Delaunay faces destroyed by it (same counting)
+    std::size_t triangles_added = 0;    // triangles of the canonical mesh that are new (exact:
+                                        // last_change().added_simplices.size())
+    std::size_t triangles_removed = 0;  // ... that disappeared (last_change().removed_simplices)
     std::size_t evaluations = 0;        // creation and processing evaluations (re-)run
     std::size_t rounds_visited = 0;     // distinct rounds (class, index) of those evaluations
     std::size_t queries = 0;            // best-first searches made by those evaluations
@@ -112,13 +123,16 @@ public:
     DynOffCenterMesh2& operator=(DynOffCenterMesh2&&) noexcept;
 
     /// From-scratch construction on `points`.
-    /// \throw InvalidInput as DynQuadtree::build (the point naming its index) or for a bad ρ.
+    /// \throw InvalidInput as DynQuadtree::build (the point naming its index), for a bad ρ, or
+    ///        naming a point closer to another than offcenter_min_separation() (offcenter.hpp).
     [[nodiscard]] static DynOffCenterMesh2 build(std::span<const Vec2> points,
                                                  const QuadtreeOptions<2>& domain,
                                                  const OffCenterOptions& options);
 
     /// Inserts p, with DynQuadtree<2>::insert's validation (snapping, middle third, duplicates,
-    /// NaN). On any result other than Inserted nothing changes (last_update() included).
+    /// NaN, resolution); BeyondPrecision also when p is closer to an input than
+    /// offcenter_min_separation(). On any result other than Inserted nothing changes
+    /// (last_update() and last_change() included).
     /// \throw InternalError if more than options.max_steiner Steiner points would be needed
     ///        (the object is then unusable).
     [[nodiscard]] InsertResult insert(const Vec2& p);
@@ -135,6 +149,12 @@ public:
     [[nodiscard]] std::size_t vertex_count() const;
     /// The work of the last successful insert or erase.
     [[nodiscard]] const OffCenterUpdateReport& last_update() const;
+    /// The current mesh with stable ids (live_mesh.hpp), maintained by every update: the
+    /// triangles of mesh() in slot order. O(1).
+    [[nodiscard]] const LiveMesh<2>& current_mesh() const;
+    /// What the last successful insert or erase changed in current_mesh(); empty after
+    /// construction and build().
+    [[nodiscard]] const MeshDelta<2>& last_change() const;
 
     /// Every violated invariant, one message each; empty when the state is valid. Compares the
     /// stored trace (vertices with stamps and kinds, candidates, outcomes), the triangulation and

@@ -42,7 +42,14 @@
 ///   * Closed leaf (spec §5.1 [D]): a point counts as inside the leaf when its angle is within a
 ///     slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ radians of the boundary (S = largest |coordinate| of Ω,
 ///     ε = DBL_EPSILON), so that an inserted apex, which carries rounding error, always clears
-///     its pair. The quality bound therefore holds up to that slack (≈1e-10° for ℓ ≥ 1e-4·W).
+///     its pair. The quality bound therefore holds up to that slack (≈1e-10° for ℓ ≥ 1e-4·W):
+///     the promised minimum angle is offcenter_promised_min_angle_deg().
+///   * Resolution: two inputs closer than offcenter_min_separation() = 128·ε·S/θ_min (about
+///     400 ulps of S at ρ = 1.5; S as above) are refused (InvalidInput naming them; insert():
+///     InsertResult::BeyondPrecision). Below it the slack of their pair would exceed θ_min/2,
+///     and soon θ_min itself, where no pair near them is ever loose and the output keeps
+///     slivers: the promise would be void. An off-center's insertion radius is at least ρ·ℓ
+///     of its pair (Lemma A.7), so the inputs' closest pair bounds the shortest edge.
 ///   * Degenerate (cocircular) configurations, instead of the symbolic perturbation of §5.3.6:
 ///     (a) where a loose test or an off-center reads "the vertex t opposite pq", and several
 ///     vertices on that side are cocircular with p, q (a degenerate Delaunay cell), t is the
@@ -107,13 +114,26 @@ struct OffCenterMesh2 {
 
 /// Runs the static off-center refinement (see the file comment) on the tree's point set and
 /// domain. Deterministic: a function of (domain, point set, options) only.
-/// \throw InvalidInput if options.rho is not finite or ρ ≤ √2.
+/// \throw InvalidInput if options.rho is not finite or ρ ≤ √2, or if two points are closer than
+///        offcenter_min_separation() (naming both).
 /// \throw InternalError if more than options.max_steiner Steiner points would be needed.
 [[nodiscard]] OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree,
                                             const OffCenterOptions& options = {});
 
 /// The minimum angle (degrees) that radius-edge bound ρ guarantees: arcsin(1/(2ρ)).
 [[nodiscard]] double offcenter_min_angle_deg(double rho);
+/// The smallest distance between two inputs that the refinement over this domain resolves
+/// (file comment, "Resolution"): the ℓ at which the closed-leaf slack reaches θ_min/2.
+/// \throw InvalidInput if options.rho is not finite or ρ ≤ √2.
+[[nodiscard]] double offcenter_min_separation(const QuadtreeOptions<2>& domain,
+                                              const OffCenterOptions& options);
+/// The smallest angle (degrees) the algorithm promises for this mesh: offcenter_min_angle_deg(ρ)
+/// minus the closed-leaf slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ of its shortest edge ℓ (file comment,
+/// "Closed leaf"), the tolerance of the bound for off-centers computed in double precision. A
+/// checker of mesh.min_angle_deg should compare against this, not against the exact bound:
+/// points a few thousand ulps apart make δ visible.
+[[nodiscard]] double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
+                                                      const OffCenterOptions& options);
 
 namespace detail {
 
@@ -131,6 +151,8 @@ struct OffCenterKernel {
 
     /// Angle slack δ(ℓ) of the closed-leaf test (see the file comment).
     [[nodiscard]] double slack(double len2) const;
+    /// The ℓ at which slack() reaches θ/2 (offcenter_min_separation()).
+    [[nodiscard]] double min_separation() const;
     /// ⌊lg(ℓ / W)⌋ for ℓ² = len2.
     [[nodiscard]] int size_class(double len2) const;
     /// The point at coordinate c along box side `side` (0 bottom, 1 right, 2 top, 3 left).
@@ -152,6 +174,9 @@ struct OffCenterKernel {
     /// The leaf apex of (lo, hi) on side cw: what offcenter() returns when `apex` is set.
     [[nodiscard]] Vec2 apex_point(const Vec2& lo, const Vec2& hi, bool cw) const;
 };
+
+/// Throws InvalidInput ("<who>: rho = ... must be finite and > sqrt(2)") unless ρ is valid.
+void check_rho(const OffCenterOptions& options, const char* who);
 
 /// Finishes an OffCenterMesh2 whose points (inputs first) and counter-clockwise Delaunay
 /// triangles are set: re-triangulates every degenerate Delaunay cell as a fan from its

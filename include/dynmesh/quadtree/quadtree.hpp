@@ -21,6 +21,25 @@
 /// crowding flags of the (2k+1)^D cells around the point per level, then settles membership in I
 /// smallest level first with a bucket queue, and finally splits / merges only the cells whose
 /// membership changed. The result equals build() on the current point set, cell for cell.
+///
+/// **Resolution** (spec §7.2, "spread overflow"). The tree itself is exact, but the meshes built
+/// on it put vertices at lattice positions origin + k·u (u = W·2^-52, the grid unit) and compute
+/// off-centers in double precision, so every leaf must be resolved by the doubles at its
+/// position. A leaf L of level ℓ (side 2^ℓ·u) is **resolved** when, with h = 2^(ℓ-1)·u (half its
+/// side: the finest lattice spacing a mesh uses inside L) and X = the largest |coordinate| of L's
+/// closed box:
+///   * on a **dyadic** domain (W a power of two, every origin coordinate a multiple of W/8, e.g.
+///     auto_domain() of domain.hpp and the unit box): X ≤ 2^53·min(h, W/8). Then every lattice
+///     point of L at spacing h is a double, so mesh vertices are exact; leaves may shrink to
+///     about one ulp of the coordinates;
+///   * on any other domain (lattice positions are rounded): h ≥ 2^13·ulp(X), so a vertex moves
+///     by at most 2^-13 of the finest spacing (the old CLI rule: a sixteenth of a leaf spans
+///     1024 ulps).
+/// insert() refuses a point whose insertion would create an unresolved leaf
+/// (InsertResult::BeyondPrecision) and build() throws InvalidInput naming such a point, so every
+/// leaf of a tree is always resolved. The rule is a property of the point set: a set is accepted
+/// iff every leaf of its tree is resolved, whatever the order of insertion (every leaf of a
+/// subset's tree is a union of leaves of the set's tree, hence resolved too: erase never fails).
 
 #include <array>
 #include <cstddef>
@@ -64,9 +83,12 @@ enum class CellKind {
 
 enum class InsertResult {
     Inserted,
-    Duplicate,      // a point with the same snapped grid coordinates is already stored
-    OutsideDomain,  // not in the middle third [o + W/3, o + 2W/3]^D of the domain
-    NotFinite,      // a NaN or infinite coordinate
+    Duplicate,        // a point with the same snapped grid coordinates is already stored
+    OutsideDomain,    // not in the middle third [o + W/3, o + 2W/3]^D of the domain
+    NotFinite,        // a NaN or infinite coordinate
+    BeyondPrecision,  // the point is so close to others that its insertion would create a leaf
+                      // finer than double precision resolves at its coordinates (file comment,
+                      // "Resolution"); nothing changed
 };
 
 enum class EraseResult {
@@ -109,17 +131,24 @@ public:
     };
 
     /// An empty tree (the root alone) over the given domain.
-    /// \throw InvalidInput if the origin is not finite or the width is not finite and > 0.
+    /// \throw InvalidInput if the origin is not finite, the width is not finite and > 0, the
+    ///        box [origin, origin + W]^D overflows, or the grid unit W·2^-52 is not a normal
+    ///        double (W < 2^52·DBL_MIN).
     explicit DynQuadtree(const QuadtreeOptions<D>& options = {});
 
     /// From-scratch build (spec §2.3): computes I(P) directly, bottom-up by level, then closes
     /// it under rules A and B. Equals inserting the points one by one in any order.
     /// \throw InvalidInput naming the point (index and coordinates) if one is not finite, lies
-    ///        outside the middle third, or duplicates an earlier one after snapping.
+    ///        outside the middle third, duplicates an earlier one after snapping, or lies at an
+    ///        unresolved leaf (file comment, "Resolution": the point nearest to the first such
+    ///        leaf is named).
     [[nodiscard]] static DynQuadtree build(std::span<const Point> points,
                                            const QuadtreeOptions<D>& options = {});
 
     /// Inserts p. On any result other than Inserted nothing changes (last_update() included).
+    /// BeyondPrecision is decided exactly (every leaf the insertion would create is tested)
+    /// after the membership changes are computed and before any cell is split; a refused
+    /// insertion rolls those back, so the tree, its counts and last_update() are as before.
     [[nodiscard]] InsertResult insert(const Point& p);
     /// Erases the stored point with p's snapped grid coordinates. On NotFound nothing changes.
     [[nodiscard]] EraseResult erase(const Point& p);
@@ -138,6 +167,12 @@ public:
     /// Grid coordinates of p (multiples of 2^kGuardBits in [0, 2^kLevels)).
     /// \throw InvalidInput unless is_admissible(p).
     [[nodiscard]] GridPoint grid_point(const Point& p) const;
+
+    /// True when the domain is dyadic (file comment, "Resolution").
+    [[nodiscard]] bool dyadic() const { return dyadic_; }
+    /// True when a leaf c would be resolved (file comment, "Resolution"), whether or not c is
+    /// a cell of the tree. Cells of level 0 never are.
+    [[nodiscard]] bool is_resolved(const CellId<D>& c) const;
 
     /// The isolation radius k of the mode (1 in paper mode, 2 in mesh mode).
     [[nodiscard]] int isolation_radius() const {
@@ -227,9 +262,18 @@ private:
     [[nodiscard]] std::uint64_t count_in(const Key& x) const;
     /// crowded_k(x) from current counts (k = isolation_radius()).
     [[nodiscard]] bool is_crowded(const Key& x) const;
-    /// Spec §3.2 steps 1–4 after p's counts and leaf entry were updated; sign = +1 or -1;
-    /// path = the root-to-leaf path of p (already updated counts).
-    void propagate(const GridPoint& g, int sign, const std::vector<Node*>& path);
+    /// Spec §3.2 steps 1–3 after p's counts and leaf entry were updated; sign = +1 or -1;
+    /// path = the root-to-leaf path of p (already updated counts). Returns the membership flips
+    /// (cell, now in I) and leaves the leaf structure alone.
+    [[nodiscard]] std::vector<std::pair<Key, bool>> settle(const GridPoint& g, int sign,
+                                                           const std::vector<Node*>& path);
+    /// Spec §3.2 step 4: applies the flips of settle() to the leaf structure.
+    void apply_flips(const std::vector<std::pair<Key, bool>>& flips);
+    /// Largest |coordinate| of the closed box of the cells [lo, hi) (grid units) per axis.
+    [[nodiscard]] double box_extent(const std::array<std::uint64_t, D>& lo,
+                                    const std::array<std::uint64_t, D>& hi) const;
+    /// The resolution rule for a leaf of `level` whose closed box has largest |coordinate| X.
+    [[nodiscard]] bool resolved(int level, double x) const;
     /// Mesh mode: +-1 support from x (an I-cell holding a point, rule U) to each equal-size
     /// neighbour, which is queued in `bucket`.
     void push_u_support(const Key& x, int delta, std::vector<Key>& bucket);
@@ -237,6 +281,7 @@ private:
     void merge(const Key& x);
 
     QuadtreeOptions<D> options_;
+    bool dyadic_ = false;
     std::size_t size_ = 0;
     NodeMap nodes_;   // I(P) ∪ leaves
     StateMap state_;  // I(P) when settled
