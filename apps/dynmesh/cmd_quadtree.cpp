@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -30,6 +31,7 @@
 #include "dynmesh/io/simplex_mesh_io.hpp"
 #include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/quadtree/domain.hpp"
 #include "dynmesh/quadtree/dyn_mesh.hpp"
 #include "dynmesh/quadtree/dyn_offcenter.hpp"
 #include "dynmesh/quadtree/oct_mesh.hpp"
@@ -119,9 +121,11 @@ void check_domain_resolution(const QuadtreeOptions<D>& o, const std::string& wha
             throw InvalidInput(what + ": the domain box overflows (coordinates too large)");
 }
 
-/// The domain box: explicit "X0,Y0,W" (2D) / "X0,Y0,Z0,W" (3D), or "auto": centred on the
-/// bounding box of the initial points and every inserted point, of width 4 × its larger extent
-/// (1 if the extent is 0), so that the box's middle third holds every point with a margin.
+/// The domain box: explicit "X0,Y0,W" (2D) / "X0,Y0,Z0,W" (3D), or "auto": the library's
+/// auto_domain_for_updates (quadtree/domain.hpp), a dyadic box snapped to a coarse grid,
+/// chosen from the final point set of the run (the initial points with the script applied)
+/// whenever every point the run ever holds fits in its middle third, so that an update run
+/// and a from-scratch run on the final points write the same bytes.
 template <int D>
 QuadtreeOptions<D> choose_domain(const std::string& spec, const std::vector<PointD<D>>& pts,
                                  const std::vector<Op<D>>& ops, const std::string& points_file) {
@@ -153,76 +157,33 @@ QuadtreeOptions<D> choose_domain(const std::string& spec, const std::vector<Poin
         check_domain_resolution<D>(o, "--domain " + spec);
         return o;
     }
-    std::array<double, kD> lo{}, hi{};
-    lo.fill(INFINITY);
-    hi.fill(-INFINITY);
-    const auto grow = [&](const PointD<D>& p) {
-        for (std::size_t i = 0; i < kD; ++i) {
-            lo[i] = std::min(lo[i], p[i]);
-            hi[i] = std::max(hi[i], p[i]);
-        }
+    std::vector<PointD<D>> all = pts;
+    std::map<std::array<double, kD>, std::size_t> present;  // coordinates -> count
+    const auto key = [](const PointD<D>& p) {
+        std::array<double, kD> k{};
+        for (std::size_t i = 0; i < kD; ++i) k[i] = p[i];
+        return k;
     };
-    for (const PointD<D>& p : pts) grow(p);
-    for (const Op<D>& op : ops)
-        if (op.insert) grow(op.p);
-    if (!(lo[0] <= hi[0])) return o;  // no points at all: the unit box
-    double extent = 0;
-    for (std::size_t i = 0; i < kD; ++i) extent = std::max(extent, hi[i] - lo[i]);
-    if (!(extent > 0)) extent = 1.0;
-    o.width = 4 * extent;
-    for (std::size_t i = 0; i < kD; ++i) o.origin[i] = 0.5 * lo[i] + 0.5 * hi[i] - 0.5 * o.width;
-    check_domain_resolution<D>(o, points_file + ": the automatic domain");
-    return o;
-}
-
-/// Unit in the last place of |x|.
-double ulp_of(double x) {
-    const double m = std::fabs(x);
-    return std::nextafter(m, INFINITY) - m;
-}
-
-/// Checks that leaves of level `leaf_level` inside the cell (level, index) — and the finer
-/// cells and vertices the mesher derives from them — are resolved by the coordinates there:
-/// a sixteenth of the leaf size must span at least 1024 ulps of the largest coordinate of the
-/// cell. Returns the error text, or an empty string.
-template <int D>
-std::string cell_underflow(const QuadtreeOptions<D>& o, int level,
-                           const std::array<std::uint64_t, D>& index, int leaf_level) {
-    const double cell = std::ldexp(o.width, level - DynQuadtree<D>::kLevels);
-    const double leaf = std::ldexp(o.width, leaf_level - DynQuadtree<D>::kLevels);
-    double big = 0;
-    PointD<D> corner{};
-    for (std::size_t i = 0; i < static_cast<std::size_t>(D); ++i) {
-        const double x0 = o.origin[i] + static_cast<double>(index[i]) * cell;
-        corner[i] = x0;
-        big = std::max({big, std::fabs(x0), std::fabs(x0 + cell)});
+    for (const PointD<D>& p : pts) ++present[key(p)];
+    for (const Op<D>& op : ops) {
+        if (op.insert) {
+            all.push_back(op.p);
+            ++present[key(op.p)];
+        } else if (auto it = present.find(key(op.p)); it != present.end() && --it->second == 0) {
+            present.erase(it);
+        }
     }
-    if (std::ldexp(leaf, -4) >= 1024 * ulp_of(big)) return {};
-    return "cell sizes underflow: the point spread is too large for double precision (a cell "
-           "of size " +
-           fmt_double(leaf) + " at " + fmt_point<D>(corner) +
-           " is below the coordinate resolution there)";
-}
-
-/// The first unresolved leaf of the tree (see cell_underflow), or an empty string.
-template <int D>
-std::string tree_underflow(const DynQuadtree<D>& tree) {
-    for (const CellId<D>& c : tree.leaves()) {
-        std::string e = cell_underflow<D>(tree.options(), c.level, c.index, c.level);
-        if (!e.empty()) return e;
+    std::vector<PointD<D>> final_points;
+    for (const auto& [k, count] : present) {
+        PointD<D> p{};
+        for (std::size_t i = 0; i < kD; ++i) p[i] = k[i];
+        final_points.insert(final_points.end(), count, p);
     }
-    return {};
-}
-
-/// The new leaves of the last insert (children of the split cells), checked as above.
-template <int D>
-std::string update_underflow(const DynQuadtree<D>& tree) {
-    for (const CellId<D>& c : tree.last_update().split) {
-        if (c.level == 0) continue;
-        std::string e = cell_underflow<D>(tree.options(), c.level, c.index, c.level - 1);
-        if (!e.empty()) return e;
+    try {
+        return auto_domain_for_updates<D>(final_points, all);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(points_file + ": the automatic domain: " + e.what());
     }
-    return {};
 }
 
 std::string lower_ext(const std::string& path) {
@@ -274,18 +235,27 @@ MeshResult describe_mesh(QuadMesh2 mesh, const std::optional<OffCenterMesh2>& oc
     r.extra["min_angle_deg"] = angles.min;
     r.extra["max_angle_deg"] = angles.max;
     r.extra["mesher"] = oc ? "offcenter" : "quadtree";
+    // The bound holds up to the slack of off-centers computed in double precision, which
+    // grows as the shortest edge shrinks (offcenter.hpp, "Closed leaf").
+    double promised = 0;
     if (oc) {
+        OffCenterOptions o;
+        o.rho = a.rho;
+        promised = offcenter_promised_min_angle_deg(*oc, o);
         r.extra["rho"] = a.rho;
         r.extra["steiner"] = oc->steiner;
         r.extra["min_angle_bound_deg"] = offcenter_min_angle_deg(a.rho);
+        r.extra["min_angle_promised_deg"] = promised;
     }
     if (a.check) {
         if (oc) {
             r.problems = check_offcenter_mesh(*oc);
-            if (angles.min < offcenter_min_angle_deg(a.rho) - 1e-7)
-                r.problems.push_back("smallest angle " + std::to_string(angles.min) +
-                                     " below the bound " +
-                                     std::to_string(offcenter_min_angle_deg(a.rho)) + " degrees");
+            if (angles.min < promised)
+                r.problems.push_back("smallest angle " + fmt_double(angles.min) +
+                                     " below the promised " + fmt_double(promised) +
+                                     " degrees (the bound " +
+                                     fmt_double(offcenter_min_angle_deg(a.rho)) +
+                                     " less the rounding slack of the shortest edge)");
         } else {
             r.problems = check_quad_mesh(mesh);
             if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
@@ -365,15 +335,28 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
     }
     const std::vector<Op<D>> ops = a.ops.empty() ? std::vector<Op<D>>{} : read_ops<D>(a.ops);
     const QuadtreeOptions<D> domain = choose_domain<D>(a.domain, pts, ops, a.points);
-    const bool auto_domain = a.domain == "auto";
+    const bool automatic = a.domain == "auto";
     const std::string outside =
-        auto_domain ? " is outside the middle third of the automatic domain (its coordinates are "
+        automatic ? " is outside the middle third of the automatic domain (its coordinates are "
                       "too large for the point spread: cell sizes underflow)"
                     : " is outside the middle third of the domain";
     const std::string quantum =
         " (after snapping to the grid quantum " +
         fmt_double(std::ldexp(domain.width, DynQuadtree<D>::kGuardBits - DynQuadtree<D>::kLevels)) +
         ")";
+
+    OffCenterOptions oc_options;
+    oc_options.rho = a.rho;
+    const auto beyond_precision = [&]() -> std::string {
+        const std::string cells = "so close to other points that its cells would fall below the "
+                                  "coordinate resolution there (double precision)";
+        if (!offcenter) return cells;
+        const QuadtreeOptions<2> box{.origin = {domain.origin[0], domain.origin[1]},
+                                     .width = domain.width};
+        return "closer to a point than the off-center refinement resolves (" +
+               fmt_double(offcenter_min_separation(box, oc_options)) +
+               ", offcenter_min_separation), or " + cells;
+    };
 
     // Validate the initial points with their line numbers before building anything.
     {
@@ -396,21 +379,25 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
     // or, with --rho in 2D, DynOffCenterMesh2 (off-center refinement).
     std::optional<DynQuadMesh<D>> dyn;
     std::optional<DynOffCenterMesh2> off;  // D == 2 only
-    OffCenterOptions oc_options;
-    oc_options.rho = a.rho;
     progress.stage(std::string("building the ") + tree_name + " and its mesh");
     auto t0 = std::chrono::steady_clock::now();
-    if constexpr (D == 2) {
-        if (offcenter) off.emplace(DynOffCenterMesh2::build(pts, domain, oc_options));
+    try {
+        if constexpr (D == 2) {
+            if (offcenter) off.emplace(DynOffCenterMesh2::build(pts, domain, oc_options));
+        }
+        if (!offcenter) dyn.emplace(DynQuadMesh<D>::build(pts, domain));
+    } catch (const InvalidInput& e) {
+        // The library names the point by its index; the user knows it by its line.
+        if (e.element >= input.lines.size()) throw InvalidInput(a.points + ": " + e.what());
+        throw InvalidInput(a.points + ":" + std::to_string(input.lines[e.element]) + ": " +
+                           e.what());
     }
-    if (!offcenter) dyn.emplace(DynQuadMesh<D>::build(pts, domain));
     const double seconds_build = seconds_since(t0);
     const DynQuadtree<D>& tree = [&]() -> const DynQuadtree<D>& {
         if constexpr (D == 2)
             if (off) return off->tree();
         return dyn->tree();
     }();
-    if (std::string e = tree_underflow(tree); !e.empty()) throw InvalidInput(a.points + ": " + e);
     const auto insert = [&](const PointD<D>& p) {
         if constexpr (D == 2)
             if (off) return off->insert(p);
@@ -453,17 +440,14 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
                                        outside.substr(3));
                 case InsertResult::NotFinite:
                     throw InvalidInput(where + "inserting a non-finite point");
+                case InsertResult::BeyondPrecision:
+                    throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) + ": " +
+                                       beyond_precision());
             }
         } else if (erase(op.p) != EraseResult::Erased) {
             throw InvalidInput(where + "erasing " + fmt_point<D>(op.p) + ": no such point");
         }
         const double secs = seconds_since(t0);
-        if (op.insert) {
-            if (std::string e = update_underflow(tree); !e.empty()) {
-                (void)erase(op.p);  // leave the state as it was before the op
-                throw InvalidInput(where + "inserting " + fmt_point<D>(op.p) + ": " + e);
-            }
-        }
         seconds_ops += secs;
         nlohmann::json entry = {{"op", op.insert ? "+" : "-"},
                                 {"seconds", secs},
@@ -484,6 +468,14 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
                 entry["simplices_added"] = u.triangles_added;
                 entry["evaluations"] = u.evaluations;
             }
+        // The change of the maintained mesh (MeshDelta: what a caller mirroring it applies).
+        const auto record_delta = [&](const auto& delta) {
+            entry["vertices_removed"] = delta.removed_vertices.size();
+            entry["vertices_added"] = delta.added_vertices.size();
+        };
+        if constexpr (D == 2)
+            if (off) record_delta(off->last_change());
+        if (dyn) record_delta(dyn->last_change());
         op_times.push_back(std::move(entry));
     }
 

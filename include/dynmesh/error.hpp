@@ -6,6 +6,7 @@
 /// that callers can tell bad input (InvalidInput, IoError) from a broken mesh
 /// (TopologyError) or from a bug of ours (InternalError).
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,13 @@ struct Error : std::runtime_error {
 /// A bad argument or option, or an input that violates a documented precondition.
 struct InvalidInput : Error {
     using Error::Error;
+    /// An error about one element of the caller's input (a point, vertex or face), given by its
+    /// index in the span the caller passed, so that a caller reading a file can name the line.
+    InvalidInput(const std::string& message, std::size_t element_index)
+        : Error(message), element(element_index) {}
+    static constexpr std::size_t kNoElement = static_cast<std::size_t>(-1);
+    /// The index of the offending input element, or kNoElement.
+    std::size_t element = kNoElement;
 };
 /// A file that cannot be read or written, or whose content is malformed.
 struct IoError : Error {

@@ -1483,6 +1483,7 @@ DynOffCenterMesh2::DynOffCenterMesh2(std::unique_ptr<Impl> impl) : impl_(std::mo
 DynOffCenterMesh2::DynOffCenterMesh2(const QuadtreeOptions<2>& domain,
                                      const OffCenterOptions& options) {
     detail::check_rho(options, "DynOffCenterMesh2");
+    detail::check_offcenter_domain(domain, "DynOffCenterMesh2");
     impl_ = std::make_unique<Impl>(domain, options);
     impl_->begin_update();
     impl_->init_box();
@@ -1500,6 +1501,7 @@ DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
                                            const QuadtreeOptions<2>& domain,
                                            const OffCenterOptions& options) {
     detail::check_rho(options, "DynOffCenterMesh2");
+    detail::check_offcenter_domain(domain, "DynOffCenterMesh2");
     DynQuadtree<2> tree = DynQuadtree<2>::build(points, domain);  // validates, names bad points
     auto impl = std::make_unique<Impl>(domain, options);
     impl->tree = std::move(tree);
@@ -1512,7 +1514,8 @@ DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
                                detail::format_point<2>(points[i]) + " is closer to the point " +
                                detail::format_point<2>(impl->verts[q].pos) + " than the " +
                                detail::format_double(impl->kernel.min_separation()) +
-                               " the off-center refinement resolves (offcenter_min_separation)");
+                               " the off-center refinement resolves (offcenter_min_separation)",
+                               i);
     impl->propagate();
     impl->end_update();
     impl->report = OffCenterUpdateReport{};

@@ -9,6 +9,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/scaled_frame.hpp"
 #include "format.hpp"
 #include "leaf_mesh.hpp"
 
@@ -213,13 +214,16 @@ DihedralRangeDeg dihedral_range_deg(const OctMesh3& mesh) {
     DihedralRangeDeg r;
     constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                   {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    for (const auto& t : mesh.tets)
+    for (const auto& t : mesh.tets) {
+        // Measured in the tetrahedron's exact unit frame (scaled_frame.hpp).
+        const UnitPoints<4> c = to_unit(std::array<Point3, 4>{
+            mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]});
         for (const auto& e : kEdges) {
             // The dihedral angle at edge pq is the angle between the components of
             // (a - p) and (b - p) orthogonal to q - p.
-            const Vec3& p = mesh.points[t[e[0]]];
-            const Vec3 axis = normalized(mesh.points[t[e[1]]] - p);
-            Vec3 u = mesh.points[t[e[2]]] - p, w = mesh.points[t[e[3]]] - p;
+            const Vec3& p = c.p[e[0]];
+            const Vec3 axis = normalized(c.p[e[1]] - p);
+            Vec3 u = c.p[e[2]] - p, w = c.p[e[3]] - p;
             u -= dot(u, axis) * axis;
             w -= dot(w, axis) * axis;
             const double deg =
@@ -227,6 +231,7 @@ DihedralRangeDeg dihedral_range_deg(const OctMesh3& mesh) {
             r.min = std::min(r.min, deg);
             r.max = std::max(r.max, deg);
         }
+    }
     return r;
 }
 

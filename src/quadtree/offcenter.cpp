@@ -434,6 +434,19 @@ void check_rho(const OffCenterOptions& options, const char* who) {
                            " must be finite and > sqrt(2)");
 }
 
+void check_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who) {
+    const double w = domain.width;
+    const double s = std::max({std::fabs(domain.origin.x), std::fabs(domain.origin.y),
+                               std::fabs(domain.origin.x + w), std::fabs(domain.origin.y + w)});
+    if (!std::isfinite(w) || !std::isfinite(s)) return;  // DynQuadtree's constructor says why
+    if (w < kOffCenterMinScale || w > kOffCenterMaxScale || s > kOffCenterMaxScale)
+        throw InvalidInput(std::string(who) + ": the domain (width " + format_double(w) +
+                           ", coordinates up to " + format_double(s) +
+                           ") is outside the range of the off-center refinement: width and "
+                           "coordinates must lie in [1e-120, 1e120] (scale the points by a power "
+                           "of two)");
+}
+
 double OffCenterKernel::min_separation() const {
     return 64.0 * DBL_EPSILON * scale / (0.5 * theta - 1e-12);
 }
@@ -583,6 +596,7 @@ double offcenter_min_angle_deg(double rho) {
 double offcenter_min_separation(const QuadtreeOptions<2>& domain,
                                 const OffCenterOptions& options) {
     detail::check_rho(options, "offcenter_min_separation");
+    detail::check_offcenter_domain(domain, "offcenter_min_separation");
     return detail::OffCenterKernel(domain.origin, domain.width, options).min_separation();
 }
 
@@ -601,6 +615,7 @@ double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
 
 OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree, const OffCenterOptions& options) {
     detail::check_rho(options, "offcenter_mesh");
+    detail::check_offcenter_domain(tree.options(), "offcenter_mesh");
     OffCenterRefiner refiner(tree, options);
     return refiner.run();
 }

@@ -10,6 +10,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
+#include "dynmesh/geometry/scaled_frame.hpp"
 #include "format.hpp"
 #include "leaf_mesh.hpp"
 
@@ -117,17 +118,23 @@ std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
 
 AngleRangeDeg angle_range_deg(const QuadMesh2& mesh) {
     AngleRangeDeg r;
-    for (const auto& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k) {
-            const Vec2& p = mesh.points[t[k]];
-            const Vec2& a = mesh.points[t[(k + 1) % 3]];
-            const Vec2& b = mesh.points[t[(k + 2) % 3]];
+    for (const auto& t : mesh.triangles) {
+        // Measured in the triangle's exact unit frame (scaled_frame.hpp): no square or product
+        // of edge vectors underflows or overflows, whatever the magnitude of the coordinates.
+        std::array<Point3, 3> c;
+        for (std::size_t k = 0; k < 3; ++k) c[k] = {mesh.points[t[k]].x, mesh.points[t[k]].y, 0.0};
+        const UnitPoints<3> u = to_unit(c);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Point3& p = u.p[k];
+            const Point3& a = u.p[(k + 1) % 3];
+            const Point3& b = u.p[(k + 2) % 3];
             const double ux = a.x - p.x, uy = a.y - p.y, vx = b.x - p.x, vy = b.y - p.y;
             const double deg = std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180.0 /
                                std::numbers::pi;
             r.min = std::min(r.min, deg);
             r.max = std::max(r.max, deg);
         }
+    }
     return r;
 }
 

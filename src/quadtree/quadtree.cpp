@@ -540,17 +540,16 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         for (std::size_t i = 0; i < points.size(); ++i) {
             GridPoint g;
             const InsertResult r = tree.snap(points[i], g);
-            DYNMESH_CHECK(r != InsertResult::NotFinite,
-                          "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              format_point<D>(points[i]) + " is not finite");
-            DYNMESH_CHECK(r != InsertResult::OutsideDomain,
-                          "DynQuadtree::build: point " + std::to_string(i) + " " +
-                              format_point<D>(points[i]) +
-                              " is outside the middle third of the domain");
+            const auto bad = [&](const std::string& what) {
+                return InvalidInput("DynQuadtree::build: point " + std::to_string(i) + " " +
+                                        format_point<D>(points[i]) + " " + what,
+                                    i);
+            };
+            if (r == InsertResult::NotFinite) throw bad("is not finite");
+            if (r == InsertResult::OutsideDomain)
+                throw bad("is outside the middle third of the domain");
             const auto [it, fresh] = seen.emplace(cell_of(g, 0), i);
-            DYNMESH_CHECK(fresh, "DynQuadtree::build: point " + std::to_string(i) + " " +
-                                     format_point<D>(points[i]) + " duplicates point " +
-                                     std::to_string(it->second));
+            if (!fresh) throw bad("duplicates point " + std::to_string(it->second));
             entries[i] = {g, points[i]};
         }
     }
@@ -691,7 +690,8 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
             "needs a cell of size " +
             format_double(std::ldexp(options.width, bad->level - kLevels)) + " at " +
             format_point<D>(corner) + ", below the coordinate resolution there" +
-            (tree.dyadic() ? "" : " (a dyadic domain, e.g. auto_domain(), resolves finer)"));
+            (tree.dyadic() ? "" : " (a dyadic domain, e.g. auto_domain(), resolves finer)"),
+            best);
     }
     return tree;
 }

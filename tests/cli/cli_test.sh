@@ -389,7 +389,8 @@ PY
 import json
 d = json.load(open('dyn.json'))
 for o in d['ops']:
-    for k in ('cells_split', 'cells_merged', 'leaves_examined', 'simplices_removed', 'simplices_added'):
+    for k in ('cells_split', 'cells_merged', 'leaves_examined', 'simplices_removed', 'simplices_added',
+              'vertices_removed', 'vertices_added'):
         assert k in o, (k, o)
     if o['op'] == '+': assert o['simplices_added'] > 0, o
 " || fail "per-op mesh deltas missing or wrong"
@@ -397,6 +398,10 @@ for o in d['ops']:
     run 0 "$bin" quadtree final.node --domain "$dom" -o scratch.node --check --quiet
     cmp -s dyn.node scratch.node || fail "dynamic and from-scratch .node differ"
     cmp -s dyn.ele scratch.ele || fail "dynamic and from-scratch .ele differ"
+    # --domain auto (the default) picks the same snapped box for both runs: same bytes.
+    run 0 "$bin" quadtree final.node -o auto.node --report auto.json --quiet
+    [ "$(json_get auto.json "['domain']")" = "$(json_get dyn.json "['domain']")" ] || fail "automatic boxes differ"
+    cmp -s dyn.node auto.node && cmp -s dyn.ele auto.ele || fail "update and from-scratch runs with --domain auto differ"
     run 0 "$bin" quadtree "$pts" -o dots.off --quiet
     head -1 dots.off | grep -q OFF || fail "no OFF output"
     # --png: the mesh before and after the script, drawn with /usr/bin/python3 + matplotlib
@@ -459,12 +464,45 @@ quadtree_bad)
     printf '+ 5 0 0\n' > far3.txt
     expect_error 3 "far3.txt:1" p3.xyz --dim 3 --domain -1,-1,-1,3 --ops far3.txt
     expect_error 2 "X0,Y0,Z0,W" p3.xyz --dim 3 --domain 0,0,1
+    # Points closer than the coordinates resolve: refused by the library's resolution rule
+    # (DynQuadtree::insert -> BeyondPrecision, build -> the point's line), never an internal
+    # error. The explicit box is not dyadic (its lattice rounds); on the automatic (dyadic)
+    # box the same points are resolved and meshed.
+    printf '0 0\n1 1\n' > two.xy
+    printf '+ 1 1.0000000000001\n' > close.txt
+    expect_error 3 "close.txt:1: .*coordinate resolution" two.xy --domain -1.1,-1.1,3.3 --ops close.txt
+    printf '0 0\n1 1\n1 1.0000000000001\n' > close2.xy
+    expect_error 3 "close2.xy:[23]: .*coordinate resolution" close2.xy --domain -1.1,-1.1,3.3
+    run 0 "$bin" qmesh close2.xy -o ok.node --check --quiet
     printf '+ 0.5 0.5 0.50000000000001\n' > close3.txt
-    expect_error 3 "underflow" p3.xyz --dim 3 --ops close3.txt
+    expect_error 3 "close3.txt:1: .*coordinate resolution" p3.xyz --dim 3 --domain -0.75,-0.75,-0.75,2.4 --ops close3.txt
     printf '0 0 0\n1e-310 1e-310 1e-310\n' > tiny3.xyz
-    expect_error 3 "underflow" tiny3.xyz --dim 3
-    printf '0 0\n1 1\n1 1.00000000000001\n' > close2.xy
-    expect_error 3 "underflow" close2.xy
+    expect_error 3 "tiny3.xyz:2" tiny3.xyz --dim 3
+    # Off-center refinement: 200 points 1e-12 apart (a line, a grid, a random cloud) are meshed
+    # or refused with the line of a point closer than offcenter_min_separation(); a domain
+    # outside [1e-120, 1e120] is refused. Never exit 4.
+    python3 - <<'PY' || fail "could not generate the close point sets"
+import random
+random.seed(1)
+with open("line.xy", "w") as f:
+    for i in range(200): f.write("%r 0.7\n" % (0.3 + i * 1e-12))
+with open("grid.xy", "w") as f:
+    for i in range(15):
+        for j in range(14): f.write("%r %r\n" % (0.3 + i * 1e-12, 0.7 + j * 1e-12))
+with open("cloud.xy", "w") as f:
+    for i in range(200): f.write("%r %r\n" % (123.456 + random.random() * 2e-10, -7.5 + random.random() * 2e-10))
+with open("huge.xy", "w") as f:
+    for i in range(40): f.write("%r %r\n" % (random.random() * 1e200, random.random() * 1e200))
+PY
+    for f in line grid; do
+        for r in 1.5 2; do
+            run 0 "$bin" qmesh $f.xy --rho $r -o $f.node --report $f.json --check --quiet
+            python3 -c "import json; d=json.load(open('$f.json')); assert d['min_angle_deg'] >= d['min_angle_promised_deg'] and d['min_angle_promised_deg'] <= d['min_angle_bound_deg'], d" || fail "$f --rho $r: promised angle"
+        done
+    done
+    expect_error 3 "cloud.xy:[0-9]*: .*offcenter_min_separation" cloud.xy --rho 2
+    expect_error 3 "huge.xy: .*1e-120, 1e120" huge.xy --rho 2
+    run 0 "$bin" qmesh huge.xy -o huge.node --check --quiet
     run 2 "$bin" qmesh p3.xyz --dim 3 -o out.ply --quiet
     grep -q "unsupported extension" err.txt || fail "3D .ply output accepted: $(cat err.txt)"
     ;;
@@ -511,6 +549,8 @@ PY
     run 0 "$bin" qmesh final3.node --dim 3 --domain "$dom" -o scratch.node --check --quiet
     cmp -s a.node scratch.node || fail "dynamic and from-scratch 3D .node differ"
     cmp -s a.ele scratch.ele || fail "dynamic and from-scratch 3D .ele differ"
+    run 0 "$bin" qmesh final3.node --dim 3 -o auto.node --quiet
+    cmp -s a.node auto.node && cmp -s a.ele auto.ele || fail "3D update and from-scratch runs with --domain auto differ"
     run 0 "$bin" quadtree p3.xyz --dim 3 -o a.vtu --quiet
     grep -q 'UnstructuredGrid' a.vtu || fail "no VTU output"
     grep -A1 'Name="types"' a.vtu | tail -1 | grep -qw 10 || fail "VTU cells are not tetrahedra"
@@ -558,6 +598,8 @@ for o in json.load(open('dyn.json'))['ops']:
     run 0 "$bin" qmesh final.xy --rho 1.5 --domain "$dom" -o scratch.node --check --quiet
     cmp -s dyn.node scratch.node || fail "dynamic and from-scratch off-center .node differ"
     cmp -s dyn.ele scratch.ele || fail "dynamic and from-scratch off-center .ele differ"
+    run 0 "$bin" qmesh final.xy --rho 1.5 -o auto.node --quiet
+    cmp -s dyn.node auto.node && cmp -s dyn.ele auto.ele || fail "off-center update and from-scratch runs with --domain auto differ"
     run 0 "$bin" qmesh "$pts" --rho 1.5 -o oc.vtu --quiet
     grep -A1 'Name="types"' oc.vtu | tail -1 | grep -qw 5 || fail "VTU cells are not triangles"
     run 0 "$bin" qmesh "$pts" -o q.mesh --quiet

@@ -418,6 +418,30 @@ TEST(DynOffCenter, RefusesPointsBeyondPrecision) {
     EXPECT_TRUE(dyn.check_invariants().empty()) << joined(dyn.check_invariants());
 }
 
+/// The refinement works in [1e-120, 1e120] (offcenter.hpp, "Range"): the same points scaled
+/// by 2^-390 and 2^390 (near 1e-118 and 1e117) are meshed and pass the checks; by 2^-450 and
+/// 2^450 (beyond, where squared lengths and circumcentres leave the normal doubles) the
+/// domain is refused up front, never an internal error midway.
+TEST(DynOffCenter, RefusesDomainsOutsideItsRange) {
+    const std::vector<Vec2> unit{{0.4, 0.45}, {0.5, 0.5}, {0.55, 0.62}, {0.61, 0.4}, {0.45, 0.6}};
+    for (int e : {-390, 390, -450, 450}) {
+        const QuadtreeOptions<2> box{.origin = {0, 0}, .width = std::ldexp(1.0, e)};
+        std::vector<Vec2> pts;
+        for (const Vec2& p : unit) pts.push_back({std::ldexp(p.x, e), std::ldexp(p.y, e)});
+        if (std::abs(e) < 400) {
+            const DynOffCenterMesh2 dyn = DynOffCenterMesh2::build(pts, box, {.rho = 1.5});
+            EXPECT_TRUE(dyn.check_invariants().empty()) << e << joined(dyn.check_invariants());
+            EXPECT_GE(dyn.mesh().min_angle_deg, offcenter_promised_min_angle_deg(dyn.mesh(), dyn.options())) << e;
+        } else {
+            EXPECT_THROW((void)DynOffCenterMesh2::build(pts, box, {.rho = 1.5}), InvalidInput) << e;
+            EXPECT_THROW(DynOffCenterMesh2(box, {.rho = 1.5}), InvalidInput) << e;
+            EXPECT_THROW((void)offcenter_mesh(DynQuadtree<2>::build(pts, box), {.rho = 1.5}),
+                         InvalidInput)
+                << e;
+        }
+    }
+}
+
 /// A longer run over every family: 2 seeds by default; DYNOFF_STRESS=<seeds> asks for more
 /// (40 seeds = 19,200 steps were run this way).
 TEST(DynOffCenterStress, Many) {

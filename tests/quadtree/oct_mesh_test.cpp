@@ -1,6 +1,7 @@
 #include "dynmesh/quadtree/oct_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <string>
@@ -128,6 +129,20 @@ TEST(OctMesh, NonUnitDomain) {
     for (int i = 0; i < 30; ++i)
         pts.push_back({rng.uniform(-1.0, 1.0), rng.uniform(12.0, 14.0), rng.uniform(2.25, 4.25)});
     expect_good_mesh(DynQuadtree<3>::build(pts, options), "domain [-3,3]x[10,16]x[0.25,6.25]");
+}
+
+/// Dihedral angles do not depend on the magnitude of the coordinates (see the 2D test).
+TEST(OctMesh, DihedralsDoNotDependOnTheMagnitudeOfTheCoordinates) {
+    const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(uniform_points(12, 5)));
+    const DihedralRangeDeg ref = dihedral_range_deg(mesh);
+    ASSERT_GT(ref.min, 10.0);
+    for (int e : {-1000, 1000}) {
+        OctMesh3 scaled = mesh;
+        for (Vec3& p : scaled.points) p = {std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+        const DihedralRangeDeg d = dihedral_range_deg(scaled);
+        EXPECT_EQ(d.min, ref.min) << "scaled by 2^" << e;
+        EXPECT_EQ(d.max, ref.max) << "scaled by 2^" << e;
+    }
 }
 
 /// As QuadMesh.HistoryIndependentAfterInsertsAndErases: the updated mesh-mode tree's mesh

@@ -1,6 +1,7 @@
 #include "dynmesh/quadtree/quad_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -148,6 +149,22 @@ TEST(QuadMesh, CheckerMeasuresTheBoxTheCornersSpan) {
                                 {0.5 + 1.5e-9, 0.25 + 1.9e-9}};
     const QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(pts, o));
     EXPECT_TRUE(check_quad_mesh(mesh).empty()) << joined(check_quad_mesh(mesh));
+}
+
+/// Angles do not depend on the magnitude of the coordinates: the same mesh scaled by 2^-1000
+/// (coordinates near 1e-301, where products of edge vectors underflow) and by 2^1000 (near
+/// 1e301, where they overflow) has bit-identical angle extremes.
+TEST(QuadMesh, AnglesDoNotDependOnTheMagnitudeOfTheCoordinates) {
+    const QuadMesh2 mesh = quad_mesh(DynQuadtree<2>::build(uniform_points(40, 5)));
+    const AngleRangeDeg ref = angle_range_deg(mesh);
+    ASSERT_GT(ref.min, 10.0);
+    for (int e : {-1000, 1000}) {
+        QuadMesh2 scaled = mesh;
+        for (Vec2& p : scaled.points) p = {std::ldexp(p.x, e), std::ldexp(p.y, e)};
+        const AngleRangeDeg a = angle_range_deg(scaled);
+        EXPECT_EQ(a.min, ref.min) << "scaled by 2^" << e;
+        EXPECT_EQ(a.max, ref.max) << "scaled by 2^" << e;
+    }
 }
 
 TEST(QuadMesh, CheckerFindsBrokenMeshes) {

@@ -50,6 +50,12 @@
 ///     and soon θ_min itself, where no pair near them is ever loose and the output keeps
 ///     slivers: the promise would be void. An off-center's insertion radius is at least ρ·ℓ
 ///     of its pair (Lemma A.7), so the inputs' closest pair bounds the shortest edge.
+///   * Range: the refinement computes off-centers, circumcentres and squared lengths in double
+///     precision, so the domain must keep them normal numbers: its width W and its largest
+///     |coordinate| S must lie in [kOffCenterMinScale, kOffCenterMaxScale] = [1e-120, 1e120]
+///     (S may be 0). Other domains are refused (InvalidInput naming the range); the quadtree
+///     mesher (quad_mesh, DynQuadMesh) has no such limit. Scale the input by a power of two
+///     (exact) to mesh beyond it.
 ///   * Degenerate (cocircular) configurations, instead of the symbolic perturbation of §5.3.6:
 ///     (a) where a loose test or an off-center reads "the vertex t opposite pq", and several
 ///     vertices on that side are cocircular with p, q (a degenerate Delaunay cell), t is the
@@ -122,6 +128,11 @@ struct OffCenterMesh2 {
 
 /// The minimum angle (degrees) that radius-edge bound ρ guarantees: arcsin(1/(2ρ)).
 [[nodiscard]] double offcenter_min_angle_deg(double rho);
+
+/// The range of domain widths and coordinates the off-center refinement accepts (file
+/// comment, "Range"); messages print them as 1e-120 and 1e120.
+inline constexpr double kOffCenterMinScale = 1e-120;
+inline constexpr double kOffCenterMaxScale = 1e120;
 /// The smallest distance between two inputs that the refinement over this domain resolves
 /// (file comment, "Resolution"): the ℓ at which the closed-leaf slack reaches θ_min/2.
 /// \throw InvalidInput if options.rho is not finite or ρ ≤ √2.
@@ -177,6 +188,8 @@ struct OffCenterKernel {
 
 /// Throws InvalidInput ("<who>: rho = ... must be finite and > sqrt(2)") unless ρ is valid.
 void check_rho(const OffCenterOptions& options, const char* who);
+/// \throw InvalidInput if the domain is outside the off-center range (file comment, "Range").
+void check_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who);
 
 /// Finishes an OffCenterMesh2 whose points (inputs first) and counter-clockwise Delaunay
 /// triangles are set: re-triangulates every degenerate Delaunay cell as a fan from its
