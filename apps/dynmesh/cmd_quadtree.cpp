@@ -543,7 +543,8 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
     }
     if (!a.png.empty()) written.push_back(a.png);
     std::cout << tree_name << ": " << tree.size() << " points, " << tree.leaf_count()
-              << " leaves, " << ops.size() << " updates; mesh " << mesh.points.size()
+              << " leaves, " << ops.size() << " updates; " << (offcenter ? "off-center mesh " : "mesh ")
+              << mesh.points.size()
               << " vertices, " << mesh.simplices.size()
               << (D == 2 ? " triangles, angles " : " tetrahedra, dihedral angles ")
               << mesh.min_angle << " .. " << mesh.max_angle << " deg\n  wrote " << join(written, " and ")
