@@ -1,0 +1,129 @@
+#include "dynmesh/probing/refine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/shapes/analytic.hpp"
+
+namespace dynmesh {
+namespace {
+
+/// The unit sphere as a probing oracle (first crossing of a ray from outside).
+class UnitSphereOracle final : public Oracle {
+public:
+    std::optional<ProbeHit> cast(const Point3& s, const Vec3& d, double t_max) const override {
+        ++casts;
+        const double b = dot(s, d), c = dot(s, s) - 1;
+        const double disc = b * b - c;
+        if (!(disc > 0)) return std::nullopt;
+        const double t = -b - std::sqrt(disc);
+        if (t < -1e-12 || t > t_max + 1e-12) return std::nullopt;
+        return ProbeHit{s + std::max(t, 0.0) * d, std::max(t, 0.0), false};
+    }
+    double tolerance() const override { return 1e-12; }
+    mutable std::size_t casts = 0;
+};
+
+ProbingOptions sphere_options(double eps) {
+    ProbingOptions o;
+    o.eps = eps;
+    o.eps_S = 1;
+    o.omega_center = {0, 0, 0};
+    o.omega_radius = 1.5;
+    o.interior_points = {{0, 0, 0}};
+    return o;
+}
+
+/// Spec §7 test 3 with the §10.5 bound: a closed oriented sphere mesh, every ball ≤ ε, a
+/// 2ε-sample, Hausdorff within 1 − sqrt(1 − ε²).
+TEST(ProbeSurface, SphereIsAClosedManifoldWithSmallBalls) {
+    const double eps = 0.08;
+    const UnitSphereOracle oracle;
+    const ProbingResult r = probe_surface(oracle, sphere_options(eps));
+    ASSERT_GT(r.mesh.triangles.size(), 100u);
+    const SurfaceMesh m = SurfaceMesh::from_soup(r.mesh);
+    const MeshCheckReport check = check_mesh(m, {.require_closed = true, .require_connected = true});
+    EXPECT_TRUE(check.ok()) << check.summary();
+    EXPECT_EQ(check.euler, 2);
+    EXPECT_LE(r.report.max_ball_radius, eps);
+    std::printf("sphere eps %.3f: %zu vertices, %zu facets, %zu probes (%zu bootstrap), %zu cells, "
+                "%zu retained, %zu detection / %zu positioning edges, path %.3f, exterior %.3f\n",
+                eps, r.report.vertices, r.report.facets, r.report.probes, r.report.probes_bootstrap,
+                r.report.cells_created, r.report.nodes_retained, r.report.detection_edges,
+                r.report.positioning_edges, r.report.path_length, r.report.exterior_path_length);
+    EXPECT_EQ(r.report.probes, oracle.casts);
+    // Outward orientation: every facet's normal points away from the centre.
+    for (const auto& t : r.mesh.triangles) {
+        const Point3 &a = r.mesh.points[t[0]], &b = r.mesh.points[t[1]], &c = r.mesh.points[t[2]];
+        ASSERT_GT(dot(cross(b - a, c - a), a + b + c), 0);
+    }
+    // Vertices on S; facets within 1 - sqrt(1 - eps^2) of S (their planes cut the ball).
+    double dev = 0;
+    for (const Point3& p : r.mesh.points) EXPECT_NEAR(norm(p), 1.0, 1e-12);
+    for (const auto& t : r.mesh.triangles) {
+        const Point3 g = (r.mesh.points[t[0]] + r.mesh.points[t[1]] + r.mesh.points[t[2]]) / 3.0;
+        dev = std::max(dev, 1 - norm(g));
+    }
+    EXPECT_LE(dev, 1 - std::sqrt(1 - eps * eps) + 1e-9);
+    // A 2ε-sample of the sphere.
+    const Sphere sphere({0, 0, 0}, 1);
+    for (const Point3& q : sphere.sample_uniform(2000, 3)) {
+        double best = INFINITY;
+        for (const Point3& p : r.sample) best = std::min(best, norm(p - q));
+        ASSERT_LE(best, 2 * eps) << q.x << " " << q.y << " " << q.z;
+    }
+    // Termination argument: inserted samples are more than ε apart... up to the bootstrap
+    // triangle, which is ε/8-small by construction.
+    for (std::size_t i = 3; i < r.sample.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j) ASSERT_GT(norm(r.sample[i] - r.sample[j]), eps) << i << " " << j;
+    // Costs: every probe is of a Voronoi edge end, at most two per edge created.
+    EXPECT_GT(r.report.cells_created, r.mesh.triangles.size());
+    EXPECT_LE(r.report.probes - r.report.probes_bootstrap, 2 * 4 * r.report.cells_created);
+}
+
+TEST(ProbeSurface, RunsAreDeterministic) {
+    const UnitSphereOracle oracle;
+    const ProbingResult a = probe_surface(oracle, sphere_options(0.06));
+    const ProbingResult b = probe_surface(oracle, sphere_options(0.06));
+    EXPECT_EQ(a.sample, b.sample);
+    EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+    EXPECT_EQ(a.report.probes, b.report.probes);
+    EXPECT_EQ(a.report.cells_created, b.report.cells_created);
+}
+
+TEST(ProbeSurface, RefusesBadOptions) {
+    const UnitSphereOracle oracle;
+    ProbingOptions o = sphere_options(0.1);
+    o.eps = 0.095;  // >= 0.091 eps_S
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+    o = sphere_options(NAN);
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+    o = sphere_options(0.05);
+    o.interior_points.clear();
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+    o = sphere_options(0.05);
+    o.interior_points = {{2, 0, 0}};  // outside Omega
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+    o = sphere_options(0.05);
+    o.interior_points = {{0, 0, 1.2}};  // inside Omega, outside the object: the probe misses
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+    o = sphere_options(0.05);
+    o.omega_radius = 1.0 + 1e-9;  // S touches the boundary of Omega
+    EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
+}
+
+TEST(ProbeSurface, EpsFromDelta) {
+    // The unit-sphere example of spec §2: eps_S = 1, R_Omega = 1.5, delta = 0.01 -> 0.0272.
+    EXPECT_NEAR(probing_eps_from_delta(0.01, 1, 1.5), std::sqrt(0.01 / 13.5), 1e-15);
+    EXPECT_THROW((void)probing_eps_from_delta(-1, 1, 1.5), InvalidInput);
+}
+
+}  // namespace
+}  // namespace dynmesh
