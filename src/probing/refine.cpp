@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -99,7 +100,10 @@ public:
             if (sample_.size() >= o_.max_points)
                 throw InternalError("probe_surface: more than max_points samples");
             insert(n.cell, e.facet, n.cell->info().rec[e.facet].x);
+            if (o_.check_every != 0 && o_.check_every != SIZE_MAX && rep_.insertions % o_.check_every == 0)
+                check_invariants();
         }
+        if (o_.check_every != SIZE_MAX) check_invariants();
         ProbingResult res;
         res.sample = sample_;
         res.mesh = output();
@@ -108,6 +112,7 @@ public:
         rep_.voronoi_edges_travelled = rep_.detection_edges + rep_.positioning_edges;
         rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         res.report = rep_;
+        res.problems = problems_;
         return res;
     }
 
@@ -227,6 +232,62 @@ private:
 
     std::uint64_t next_stamp() { return ++stamp_; }
 
+    /// The safety monitor: every in-Ω move is along segments certified here (positioning moves
+    /// replay chains of them; moves on ∂Ω are free because S lies inside Ω with a margin).
+    void monitor(const Point3& a, const Point3& b) {
+        if (o_.ground_truth == nullptr) return;
+        ++rep_.segments_checked;
+        if (!o_.ground_truth->segment_is_free(a, b))
+            throw InternalError("probe_surface: the device would cross the object along the segment (" +
+                                std::to_string(a.x) + ", " + std::to_string(a.y) + ", " + std::to_string(a.z) +
+                                ") - (" + std::to_string(b.x) + ", " + std::to_string(b.y) + ", " +
+                                std::to_string(b.z) + ")");
+    }
+
+    // ---- invariants (spec §5.2, §10 "debug invariant") ---------------------------------------
+    void check_invariants() {
+        const std::string when = "after insertion " + std::to_string(rep_.insertions) + ": ";
+        auto fail = [&](const std::string& what) {
+            if (problems_.size() < 20) problems_.push_back(when + what);
+        };
+        for (std::uint32_t id = 0; id < nodes_.size(); ++id) {
+            const Node& n = nodes_[id];
+            if (!n.active || n.root()) continue;
+            // P1: the chain reaches a root through active nodes, with decreasing depth.
+            std::uint32_t a = id;
+            std::size_t steps = 0;
+            while (!nodes_[a].root() && steps <= n.depth) {
+                const std::uint32_t p = nodes_[a].prev;
+                if (p == kNone || !nodes_[p].active) break;
+                a = p;
+                ++steps;
+            }
+            if (!nodes_[a].root() || steps != n.depth)
+                fail("P1: node " + std::to_string(id) + " has no active chain of its depth to outside Omega");
+        }
+        for (Cell c : dt_.all_cell_handles()) {
+            const Node& u = nodes_[c->info().node];
+            for (int i = 0; i < 4; ++i) {
+                const Cell wc = c->neighbor(i);
+                const Node& w = nodes_[wc->info().node];
+                if (u.infinite && w.infinite) continue;
+                const Record& r = c->info().rec[i];
+                if (u.active && r.state == Record::Unprobed)
+                    fail("an edge of active node " + std::to_string(c->info().node) + " has no record");
+                // P2 (local): an edge known to be free joins nodes of the same status.
+                if (r.state == Record::Miss && u.active && !w.active)
+                    fail("P2: a free edge joins active node " + std::to_string(c->info().node) +
+                         " and inactive node " + std::to_string(wc->info().node));
+                if (r.state == Record::Hit) {
+                    const double rad = ball_radius(c, i, r.x);
+                    const auto nv = dt_.nearest_vertex(to_k(r.x), c);
+                    if (norm(to_p(nv->point()) - r.x) < rad * (1 - 1e-9))
+                        fail("the ball at a hit of node " + std::to_string(c->info().node) + " holds a sample");
+                }
+            }
+        }
+    }
+
     /// Probes the directed edge (c, i) unless its record is known; returns the record.
     const Record& probe_edge(Cell c, int i) {
         Record& r = c->info().rec[i];
@@ -309,6 +370,7 @@ private:
             if (r.state != Record::Miss || nodes_[w].active) continue;
             // w is in Ω: walk to it along the certified edge.
             if (nodes_[u].root()) go_to_boundary_point(r.s);
+            monitor(r.s, nodes_[w].pos);
             Node& n = nodes_[w];
             const Node& pu = nodes_[u];
             n.active = true;
@@ -497,6 +559,7 @@ private:
     std::uint32_t at_node_ = kNone;
     Point3 at_point_{};
     ProbingReport rep_;
+    std::vector<std::string> problems_;
 };
 
 void check_options(const ProbingOptions& o) {

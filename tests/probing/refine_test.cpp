@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 
 #include <gtest/gtest.h>
@@ -31,6 +32,25 @@ public:
     mutable std::size_t casts = 0;
 };
 
+/// The unit ball's ground truth, as much as the safety monitor needs.
+class UnitSphereTruth final : public GroundTruth {
+public:
+    bool is_free(const Point3& p) const override { return norm(p) >= 1 - 1e-12; }
+    bool segment_is_free(const Point3& a, const Point3& b) const override {
+        const Vec3 d = b - a;
+        const double len2 = dot(d, d);
+        const double t = len2 > 0 ? std::clamp(-dot(a, d) / len2, 0.0, 1.0) : 0.0;
+        return norm(a + t * d) >= 1 - 1e-9;
+    }
+    double distance(const Point3& p) const override { return std::fabs(norm(p) - 1); }
+    std::vector<Point3> sample_surface(double) const override { return {}; }
+    double reach() const override { return 1; }
+    double diameter() const override { return 2; }
+    double area() const override { return 4 * std::numbers::pi; }
+    int components() const override { return 1; }
+    int euler_characteristic() const override { return 2; }
+};
+
 ProbingOptions sphere_options(double eps) {
     ProbingOptions o;
     o.eps = eps;
@@ -46,8 +66,13 @@ ProbingOptions sphere_options(double eps) {
 TEST(ProbeSurface, SphereIsAClosedManifoldWithSmallBalls) {
     const double eps = 0.08;
     const UnitSphereOracle oracle;
-    const ProbingResult r = probe_surface(oracle, sphere_options(eps));
+    const UnitSphereTruth truth;
+    ProbingOptions o = sphere_options(eps);
+    o.ground_truth = &truth;
+    o.check_every = 100;
+    const ProbingResult r = probe_surface(oracle, o);
     ASSERT_GT(r.mesh.triangles.size(), 100u);
+    EXPECT_TRUE(r.problems.empty()) << r.problems.front();
     const SurfaceMesh m = SurfaceMesh::from_soup(r.mesh);
     const MeshCheckReport check = check_mesh(m, {.require_closed = true, .require_connected = true});
     EXPECT_TRUE(check.ok()) << check.summary();

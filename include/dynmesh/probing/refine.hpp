@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
@@ -33,6 +34,12 @@ struct ProbingOptions {
     std::vector<Point3> interior_points;  ///< one point inside each component of O (A1)
     bool allow_unguaranteed = false;      ///< accept ε ≥ 0.091·ε_S
     std::size_t max_points = 10'000'000;  ///< safety cap on |E|
+    /// The safety monitor (checks only, never the algorithm): every segment the device is
+    /// about to travel inside Ω is verified free; a violation throws InternalError naming it.
+    const GroundTruth* ground_truth = nullptr;
+    /// Check the invariants (ProbingResult::problems) after every k-th insertion and at the
+    /// end; 0: only at the end; SIZE_MAX: never.
+    std::size_t check_every = 0;
 };
 
 /// ε from a target Hausdorff distance δ (spec §2): ε = ε_S·sqrt(δ / (4.5·2R_Ω)).
@@ -52,6 +59,7 @@ struct ProbingReport {
     std::size_t insertions = 0;
     std::size_t stale_pops = 0;
     std::size_t grazing_hits = 0;
+    std::size_t segments_checked = 0;  ///< by the safety monitor
     std::size_t vertices = 0, facets = 0;
     double max_ball_radius = 0;  ///< largest ball of the output's facets (≤ ε)
     double seconds = 0;
@@ -61,6 +69,9 @@ struct ProbingResult {
     std::vector<Point3> sample;  ///< E, in insertion order
     TriangleSoup mesh;           ///< the facets of Del^v, oriented outward (points = sample)
     ProbingReport report;
+    /// Violated invariants (spec §5.2: P1, P2, records of active nodes; hits on their current
+    /// edge and their balls empty), each "after insertion k: ...". Empty when all hold.
+    std::vector<std::string> problems;
 };
 
 /// Runs the refinement. \throw InvalidInput for bad options (non-finite values, ε ≤ 0, ε ≥
