@@ -636,9 +636,11 @@ void register_quadtree(CLI::App& root, int& result) {
                 "> sqrt(2)"));
     sub->add_option("--domain", args->domain,
                     "Domain box 'X0,Y0,W' (2D) or 'X0,Y0,Z0,W' (3D); every point must lie in "
-                    "its middle third. Or 'auto': centred on the bounding box of the points and "
-                    "all inserted points, 4x its larger extent. Output is in input coordinates "
-                    "either way")
+                    "its middle third. Or 'auto': a power-of-two box about 6-12x the points' "
+                    "extent, its origin snapped to a grid of W/8 so small changes do not move it, "
+                    "chosen from the final points of --ops when every point fits (then an update "
+                    "run and a from-scratch run on the final points write the same bytes). "
+                    "Output is in input coordinates either way")
         ->capture_default_str();
     sub->add_option("--png", args->png,
                     "2D: also draw the mesh before and after the update script side by side "
