@@ -302,6 +302,12 @@ HausdorffResult hausdorff(const SurfaceMesh& a, const SurfaceMesh& b,
     return r;
 }
 
+double max_distance_to_mesh(const SurfaceMesh& mesh, const std::vector<Point3>& points) {
+    DYNMESH_CHECK(mesh.n_faces() > 0, "max_distance_to_mesh: the mesh has no face");
+    const MeshDistance to_mesh(mesh);
+    return to_mesh.max_distance(points);
+}
+
 double hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
                           const HausdorffOptions& options) {
     return hausdorff(a, b, options).distance;
@@ -322,8 +328,7 @@ HausdorffResult hausdorff_to_surface(const SurfaceMesh& mesh, const ImplicitSurf
     if (options.surface_samples > 0) {
         const std::vector<Point3> samples =
             surface.sample_uniform(options.surface_samples, options.seed);
-        const MeshDistance to_mesh(mesh);
-        r.b_to_a = to_mesh.max_distance(samples);
+        r.b_to_a = max_distance_to_mesh(mesh, samples);
         r.b_samples = samples.size();
     }
     r.distance = std::max(r.a_to_b, r.b_to_a);

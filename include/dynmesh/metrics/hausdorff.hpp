@@ -55,6 +55,11 @@ struct HausdorffResult {
 [[nodiscard]] std::vector<Point3> mesh_sample_points(const SurfaceMesh& mesh,
                                                      std::size_t face_resolution);
 
+/// The largest distance from `points` to the mesh (through an AABB tree of its faces): the
+/// surface-to-mesh side of a Hausdorff distance when the surface is known only by samples.
+/// \throw InvalidInput when the mesh has no face.
+[[nodiscard]] double max_distance_to_mesh(const SurfaceMesh& mesh, const std::vector<Point3>& points);
+
 /// Two-sided sampled Hausdorff distance between meshes a and b.
 /// \throw InvalidInput when either mesh has no face, or face_resolution == 0.
 [[nodiscard]] HausdorffResult hausdorff(const SurfaceMesh& a, const SurfaceMesh& b,
