@@ -72,7 +72,7 @@ std::optional<ProbeHit> TorusOracle::cast_checked(const Point3& s, const Vec3& d
 // ---- genus 2 -----------------------------------------------------------------------------
 
 namespace {
-constexpr double kG2Offset = 1.25, kG2Major = 1.0, kG2Minor = 0.4, kG2Blend = 0.2;
+constexpr double kG2Offset = 1.25, kG2Major = 1.0, kG2Minor = 0.4, kG2Blend = 0.6;
 }
 
 Genus2Oracle::Genus2Oracle(OracleOptions options)
@@ -81,10 +81,10 @@ Genus2Oracle::Genus2Oracle(OracleOptions options)
       right_({kG2Offset, 0, 0}, kG2Major, kG2Minor) {}
 
 Bbox3 Genus2Oracle::bbox() {
-    // The tori's boxes; the blend only adds material within k/4 of where both are near.
-    const double hx = kG2Offset + kG2Major + kG2Minor;
-    const double hy = kG2Major + kG2Minor + kG2Blend;
-    const double hz = kG2Minor + kG2Blend;
+    // f ≥ min(a, b) − k/4: f < 0 only within k/4 of a torus.
+    const double hx = kG2Offset + kG2Major + kG2Minor + kG2Blend / 4;
+    const double hy = kG2Major + kG2Minor + kG2Blend / 4;
+    const double hz = kG2Minor + kG2Blend / 4;
     return {{-hx, -hy, -hz}, {hx, hy, hz}};
 }
 
