@@ -22,6 +22,13 @@
 
 namespace dynmesh {
 
+/// A closed ball B(center, radius): the domain Ω of a probing run (spec §1: S lies in the open
+/// ball with a margin, so ∂Ω is free).
+struct Ball {
+    Point3 center{};
+    double radius = 0;
+};
+
 /// A crossing of S by a ray s + t·d.
 struct ProbeHit {
     Point3 x{};            ///< the crossing point, on S

@@ -1,0 +1,109 @@
+/// make_probe_object: spec strings to probing objects, with A1's interior points and A2's Ω.
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "../io/io_common.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/io/input_file.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/probing/oracles.hpp"
+#include "dynmesh/shapes/surface.hpp"
+
+namespace dynmesh {
+namespace {
+
+Ball omega_of(const Bbox3& b) {
+    return {0.5 * (b.min + b.max), 1.1 * 0.5 * b.diagonal()};
+}
+
+std::vector<Ball> read_balls(const std::string& path) {
+    const detail::FileContext ctx(path);
+    const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
+    std::vector<Ball> balls;
+    std::vector<std::size_t> lines;
+    detail::LineReader reader(data);
+    std::string_view line, token;
+    while (reader.next(line)) {
+        const std::string_view body = detail::strip_comment(line);
+        detail::Tokens tokens(body);
+        double v[4];
+        int k = 0;
+        while (tokens.next(token)) {
+            if (k == 4 || !detail::parse_double(token, v[k]) || !std::isfinite(v[k]))
+                ctx.fail_line(reader.line_number(),
+                              "expected 'x y z r' (four finite numbers), got " +
+                                  detail::quote_text(body));
+            ++k;
+        }
+        if (k == 0) continue;
+        if (k != 4)
+            ctx.fail_line(reader.line_number(), "expected 'x y z r' (four finite numbers), got " +
+                                                    detail::quote_text(body));
+        if (!(v[3] > 0)) ctx.fail_line(reader.line_number(), "the radius must be positive");
+        balls.push_back({{v[0], v[1], v[2]}, v[3]});
+        lines.push_back(reader.line_number());
+    }
+    if (balls.empty()) ctx.fail("no ball in the file");
+    try {
+        const BallsOracle check(balls);
+    } catch (const InvalidInput& e) {
+        const std::size_t i = e.element;
+        if (i < lines.size()) ctx.fail_line(lines[i], e.what());
+        throw;
+    }
+    return balls;
+}
+
+}  // namespace
+
+ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
+    ProbeSetup out;
+    out.spec = spec;
+    const auto has_prefix = [&](std::string_view p) { return spec.starts_with(p); };
+    if (has_prefix("sphere") || has_prefix("ellipsoid") || has_prefix("torus")) {
+        const auto surface = make_surface(spec);
+        if (const auto* s = dynamic_cast<const Sphere*>(surface.get()))
+            out.object = std::make_unique<SphereOracle>(*s, options);
+        else if (const auto* e = dynamic_cast<const Ellipsoid*>(surface.get()))
+            out.object = std::make_unique<EllipsoidOracle>(*e, options);
+        else if (const auto* t = dynamic_cast<const Torus*>(surface.get()))
+            out.object = std::make_unique<TorusOracle>(*t, options);
+        else
+            throw InternalError("make_probe_object: unexpected surface type for " + spec);
+        out.interior_points = {surface->interior_point()};
+        out.omega = omega_of(surface->bbox());
+    } else if (has_prefix("balls:")) {
+        auto balls = read_balls(spec.substr(6));
+        Bbox3 box;
+        for (const Ball& b : balls) {
+            out.interior_points.push_back(b.center);
+            box.extend(b.center - Vec3{b.radius, b.radius, b.radius});
+            box.extend(b.center + Vec3{b.radius, b.radius, b.radius});
+        }
+        out.object = std::make_unique<BallsOracle>(std::move(balls), options);
+        out.omega = omega_of(box);
+    } else if (spec == "genus2") {
+        out.object = std::make_unique<Genus2Oracle>(options);
+        out.interior_points = {Genus2Oracle::interior_point()};
+        out.omega = omega_of(Genus2Oracle::bbox());
+    } else if (spec.empty() || spec.find(':') != std::string::npos) {
+        throw InvalidInput("make_probe_object: unknown object '" + spec +
+                           "' (expected sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE, "
+                           "genus2 or a mesh file)");
+    } else {
+        const TriangleSoup soup = read_soup(spec);
+        std::unique_ptr<MeshOracle> mesh;
+        try {
+            mesh = std::make_unique<MeshOracle>(soup, options);
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(spec + ": " + e.what());
+        }
+        out.interior_points = mesh->interior_points();
+        out.omega = omega_of(mesh->bbox());
+        out.object = std::move(mesh);
+    }
+    return out;
+}
+
+}  // namespace dynmesh
