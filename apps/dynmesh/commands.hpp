@@ -13,5 +13,6 @@ void register_sample(CLI::App& root, int& result);
 void register_experiment(CLI::App& root, int& result);
 void register_quadtree(CLI::App& root, int& result);
 void register_deform(CLI::App& root, int& result);
+void register_probe(CLI::App& root, int& result);
 
 }  // namespace dynmesh::cli

@@ -98,8 +98,17 @@ public:
                 continue;
             }
             if (sample_.size() >= o_.max_points)
-                throw InternalError("probe_surface: more than max_points samples");
-            insert(n.cell, e.facet, n.cell->info().rec[e.facet].x);
+                throw InvalidInput("probe_surface: more than max_points = " + std::to_string(o_.max_points) +
+                                   " samples: eps is too small for this object");
+            // The ball must still be empty (spec §8.2): its centre is then more than eps from
+            // every sample, which is what bounds the run.
+            const Point3 x = n.cell->info().rec[e.facet].x;
+            const auto nv = dt_.nearest_vertex(to_k(x), n.cell);
+            if (norm(to_p(nv->point()) - x) < std::sqrt(e.r2) * (1 - 1e-9)) {
+                ++rep_.nonempty_pops;
+                continue;
+            }
+            insert(n.cell, e.facet, x);
             if (o_.check_every != 0 && o_.check_every != SIZE_MAX && rep_.insertions % o_.check_every == 0)
                 check_invariants();
         }

@@ -351,6 +351,41 @@ report_atomic)
     [ -e no_such_dir ] && fail "created a directory"
     grep -q "no_such_dir" err.txt || fail "report path not named"
     ;;
+probe)
+    run 0 "$bin" probe sphere:1 --eps 0.08 -o s.off --check --report s.json --quiet
+    python3 - <<'PY' || fail "bad probe report"
+import json
+d = json.load(open("s.json"))
+for k in ("probes", "probes_bootstrap", "voronoi_edges_travelled", "path_length", "exterior_path_length",
+          "cells_created", "nodes_retained", "vertices", "facets", "euler", "hausdorff", "seconds"):
+    assert k in d, k
+assert d["euler"] == 2 and d["check"]["problems"] == [], d
+assert d["hausdorff"] <= 1 - (1 - 0.08 ** 2) ** 0.5 + 1e-9, d["hausdorff"]
+assert d["vertices"] == int(open("s.off").read().split()[1]), d
+PY
+    "$bin" check s.off --closed >/dev/null || fail "the probed sphere does not pass dynmesh check"
+    run 0 "$bin" probe torus:1,0.35 --eps 0.03 -o t.vtp --check --report t.json --quiet
+    [ "$(json_get t.json "['euler']")" = 0 ] || fail "the probed torus is not of genus 1"
+    python3 -c "import json; d=json.load(open('t.json')); assert d['voronoi_edges_travelled'] > 0 and d['path_length'] > 0, d" || fail "no path on the torus"
+    expect() {  # expect CODE PATTERN ARGS...
+        local code=$1 pat=$2; shift 2
+        run "$code" "$bin" probe "$@" -o bad.off --quiet
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "error is not one line: $(cat err.txt)"
+        grep -q -- "$pat" err.txt || fail "error does not name '$pat': $(cat err.txt)"
+        [ -e bad.off ] && fail "an output was written for: $*"
+        true
+    }
+    expect 3 "not below 0.091" sphere:1 --eps 0.1
+    expect 3 "not inside the object" sphere:1 --eps 0.05 --interior 0,0,1.2
+    expect 3 "outside Omega" sphere:1 --eps 0.05 --interior 5,0,0
+    expect 3 "margin of Omega" sphere:1 --eps 0.05 --omega 0,0,0,1.0000001
+    expect 2 "exactly one of --eps and --delta" sphere:1
+    expect 2 "--interior" sphere:1 --eps 0.05 --interior 0,nan,0
+    expect 2 "eps" sphere:1 --eps nan
+    printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > open.off
+    expect 3 "open.off" open.off --eps-s 0.1 --eps 0.005
+    expect 2 "--eps-s is required" "$data/meshes/blobby.off" --eps 0.005
+    ;;
 quadtree_ops)
     pts=$data/planar/dots.node
     # An update script over dots.node (erase some points, insert new ones, erase one of those,

@@ -33,7 +33,7 @@ struct ProbingOptions {
     double omega_radius = 0;
     std::vector<Point3> interior_points;  ///< one point inside each component of O (A1)
     bool allow_unguaranteed = false;      ///< accept ε ≥ 0.091·ε_S
-    std::size_t max_points = 10'000'000;  ///< safety cap on |E|
+    std::size_t max_points = 2'000'000;  ///< cap on |E| (InvalidInput beyond)
     /// The safety monitor (checks only, never the algorithm): every segment the device is
     /// about to travel inside Ω is verified free; a violation throws InternalError naming it.
     const GroundTruth* ground_truth = nullptr;
@@ -58,6 +58,7 @@ struct ProbingReport {
     std::size_t nodes_retained = 0;   ///< active nodes kept after their cell died
     std::size_t insertions = 0;
     std::size_t stale_pops = 0;
+    std::size_t nonempty_pops = 0;  ///< popped balls that hold a sample (skipped; spec §8.2)
     std::size_t grazing_hits = 0;
     std::size_t segments_checked = 0;  ///< by the safety monitor
     std::size_t vertices = 0, facets = 0;
