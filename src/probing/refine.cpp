@@ -211,13 +211,21 @@ private:
         Vec3 n = cross(b - a, cc - a);
         n = n / norm(n);
         if (!nu.infinite && !nw.infinite) {
-            const Vec3 e = nw.pos - nu.pos;
-            const double len = norm(e);
-            L.O = nu.pos;
-            L.D = dot(n, e) >= 0 ? n : -n;
-            L.lo = 0;
-            L.hi = len;
-            L.degenerate = len <= tau_;
+            // The edge lies on the line through the facet's circumcentre along its normal.
+            // Circumcentres of nearly flat cells far outside Ω carry large absolute errors
+            // (spec §10, "far roots"), so the line is anchored at an end inside Ω, or at the
+            // facet's circumcentre, never at a far end.
+            L.D = dot(n, nw.pos - nu.pos) >= 0 ? n : -n;
+            if (nu.in_omega) {
+                L.O = nu.pos;
+            } else if (nw.in_omega) {
+                L.O = nw.pos;
+            } else {
+                L.O = to_p(CGAL::circumcenter(to_k(a), to_k(b), to_k(cc)));
+            }
+            L.lo = nu.in_omega ? 0.0 : dot(nu.pos - L.O, L.D);
+            L.hi = (nw.in_omega && !nu.in_omega) ? 0.0 : dot(nw.pos - L.O, L.D);
+            L.degenerate = L.hi - L.lo <= tau_;
             return L;
         }
         if (nw.infinite) {  // a ray from pos(u) to infinity, away from u's vertex opposite i

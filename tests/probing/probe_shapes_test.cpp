@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -71,6 +72,26 @@ TEST(ProbeShapes, EllipsoidIsASphereTopologically) {
     EXPECT_EQ(r.check.euler, 2);
     EXPECT_LE(r.result.report.max_ball_radius, eps);
     EXPECT_LE(r.hausdorff, eps * eps / ell.reach());
+}
+
+/// A real scan through the mesh oracle. Nearly flat cells put Voronoi vertices 1e11-1e12
+/// away; their edges must be taken on the facet's dual line anchored inside Omega, or kept
+/// hits drift off their edge and their balls hold samples (the invariant check fails).
+TEST(ProbeShapes, BlobbyScanThroughTheMeshOracle) {
+    const ProbeSetup setup = make_probe_object(std::string(DYNMESH_SHARED_DATA_DIR) + "/meshes/blobby.off");
+    ProbingOptions o;
+    o.eps = 0.008;
+    o.eps_S = 0.1;
+    o.omega_center = setup.omega.center;
+    o.omega_radius = setup.omega.radius;
+    o.interior_points = setup.interior_points;
+    o.ground_truth = setup.object.get();
+    const ProbingResult r = probe_surface(*setup.object, o);
+    EXPECT_TRUE(r.problems.empty()) << r.problems.size() << ": " << r.problems.front();
+    const MeshCheckReport check = check_mesh(SurfaceMesh::from_soup(r.mesh), {.require_closed = true});
+    EXPECT_TRUE(check.ok()) << check.summary();
+    EXPECT_EQ(check.euler, 2);
+    EXPECT_LE(r.report.max_ball_radius, o.eps);
 }
 
 }  // namespace
