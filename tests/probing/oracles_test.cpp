@@ -270,6 +270,29 @@ TEST(MeshOracle, StartOnTheMeshLeaving) {
     EXPECT_NEAR(again->t, 0, 1e-9);
 }
 
+TEST(MeshOracle, ContactsAlongAnEdgeOrAtAVertexAreGrazing) {
+    const TriangleSoup octa = test::octahedron().to_soup();
+    const MeshOracle o(octa), strict(octa, {.strict = true});
+    // Along the line of the edge (1,0,0)-(0,1,0): in the plane of both its faces.
+    const Vec3 d = normalized(Vec3{-1, 1, 0});
+    const auto e = o.cast({2, -1, 0}, d, 10);
+    ASSERT_TRUE(e);
+    EXPECT_TRUE(e->grazing);
+    EXPECT_NEAR(e->t, std::sqrt(2.0), 1e-12);
+    EXPECT_FALSE(strict.cast({2, -1, 0}, d, 10));
+    // Touching the apex (0, 0, 1) from the side.
+    const auto v = o.cast({-2, 0, 1}, kX, 10);
+    ASSERT_TRUE(v);
+    EXPECT_TRUE(v->grazing);
+    EXPECT_NEAR(v->t, 2, 1e-12);
+    EXPECT_FALSE(strict.cast({-2, 0, 1}, kX, 10));
+    // A transverse crossing is not grazing.
+    const auto t = o.cast({0.1, 0.1, 3}, -kZ, 10);
+    ASSERT_TRUE(t);
+    EXPECT_FALSE(t->grazing);
+    EXPECT_NEAR(t->t, 2.2, 1e-12);
+}
+
 TEST(MeshOracle, RefusesOpenAndInconsistentMeshes) {
     TriangleSoup open = unit_icosphere(1);
     open.triangles.pop_back();
