@@ -106,6 +106,10 @@ TEST(TorusOracle, KnownHits) {
     EXPECT_NEAR(hole->t, 1, 1e-12);
     EXPECT_FALSE(o.cast({0, 0, 0}, kY, 1 - 1e-9));
     EXPECT_THROW((void)o.cast({2, 0, 0}, kX, 1), InvalidInput);
+    // An unbounded ray: t_max = +infinity.
+    EXPECT_FALSE(o.cast({5, 0, 0}, kX, INFINITY));
+    ASSERT_TRUE(o.cast({5, 0, 0}, -kX, INFINITY));
+    EXPECT_THROW((void)o.cast({5, 0, 0}, -kX, NAN), InvalidInput);
     // Oblique rays: the implicit changes sign at the hit, and the hit is the first one.
     const Vec3 d = normalized(Vec3{-1, 0.3, -0.4});
     const Point3 s{6, -1, 2.5};

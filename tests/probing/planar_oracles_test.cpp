@@ -60,5 +60,13 @@ TEST(StarOracle2, HitsAgreeWithTheCurve) {
     for (const Point3& p : o.sample_surface(0.05)) EXPECT_NEAR(o.value(p), 0, 1e-12);
 }
 
+TEST(StarOracle2, FromSpec) {
+    const auto s = make_probe_object("star2:2");
+    ASSERT_NE(dynamic_cast<const StarOracle2*>(s.object.get()), nullptr);
+    EXPECT_FALSE(s.object->is_free(s.interior_points.at(0)));
+    EXPECT_GE(s.omega.radius, 2.4);
+    EXPECT_THROW((void)make_probe_object("circle2:0"), InvalidInput);
+}
+
 }  // namespace
 }  // namespace dynmesh

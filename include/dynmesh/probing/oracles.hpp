@@ -242,7 +242,8 @@ struct ProbeSetup {
 
 /// Builds the object of `spec`: "sphere:R", "ellipsoid:a,b,c", "torus:R,r" (with the
 /// optional "@cx,cy,cz" of make_surface), "balls:FILE" (lines "x y z r", '#' comments; read
-/// with read_input_file, errors "<file>:<line>: ..."), "genus2", or a mesh file path read with
+/// with read_input_file, errors "<file>:<line>: ..."), "genus2", the planar curves "circle2:R"
+/// and "star2:R" of oracles2.hpp (centred at the origin), or a mesh file path read with
 /// read_soup (any other spec with a ':' is refused as an unknown object). Ω is the ball
 /// circumscribing the bounding box, enlarged by 10% of its radius.
 /// \throw InvalidInput for a malformed spec or an object the oracle refuses; IoError for an
