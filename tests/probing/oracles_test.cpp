@@ -226,6 +226,47 @@ TEST(Genus2Oracle, ShallowChordsAreNotSkipped) {
     EXPECT_GT(tested, 50);
 }
 
+/// Gauss–Bonnet on the implicit: ∫ K dA / 2π by the coarea formula on a grid (δ(f) smoothed
+/// to a box of half-width w), K from the finite-difference Hessian of f.
+double numeric_euler(const Genus2Oracle& o) {
+    const Bbox3 b = Genus2Oracle::bbox();
+    constexpr double g = 0.015, w = 0.015, e = 1e-5;
+    double sum = 0;
+    for (double x = b.min.x + g / 2; x < b.max.x; x += g)
+        for (double y = b.min.y + g / 2; y < b.max.y; y += g)
+            for (double z = b.min.z + g / 2; z < b.max.z; z += g) {
+                const Point3 p{x, y, z};
+                if (std::fabs(o.value(p)) >= w) continue;
+                const Vec3 n = o.gradient(p);
+                double H[3][3];
+                for (std::size_t i = 0; i < 3; ++i) {
+                    Vec3 dx{};
+                    dx[i] = e;
+                    const Vec3 gp = o.gradient(p + dx), gm = o.gradient(p - dx);
+                    for (std::size_t j = 0; j < 3; ++j) H[j][i] = (gp[j] - gm[j]) / (2 * e);
+                }
+                // K = n^T adj(H) n / |n|^4.
+                const double adj[3][3] = {
+                    {H[1][1] * H[2][2] - H[1][2] * H[2][1], H[0][2] * H[2][1] - H[0][1] * H[2][2],
+                     H[0][1] * H[1][2] - H[0][2] * H[1][1]},
+                    {H[1][2] * H[2][0] - H[1][0] * H[2][2], H[0][0] * H[2][2] - H[0][2] * H[2][0],
+                     H[0][2] * H[1][0] - H[0][0] * H[1][2]},
+                    {H[1][0] * H[2][1] - H[1][1] * H[2][0], H[0][1] * H[2][0] - H[0][0] * H[2][1],
+                     H[0][0] * H[1][1] - H[0][1] * H[1][0]}};
+                double k = 0;
+                for (std::size_t i = 0; i < 3; ++i)
+                    for (std::size_t j = 0; j < 3; ++j) k += n[i] * adj[i][j] * n[j];
+                const double nn = sqnorm(n);
+                sum += k / (nn * nn) * std::sqrt(nn);
+            }
+    return sum * g * g * g / (2 * w) / (2 * std::numbers::pi);
+}
+
+TEST(Genus2Oracle, EulerCharacteristicByGaussBonnet) {
+    const Genus2Oracle o;
+    EXPECT_NEAR(numeric_euler(o), o.euler_characteristic(), 0.15);
+}
+
 TEST(Genus2Oracle, Area) {
     const Genus2Oracle o;
     // Two full tori would be 2 · 4π² · 1 · 0.4 = 31.58; the neck removes a little.
