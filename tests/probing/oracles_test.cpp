@@ -166,6 +166,32 @@ TEST(BallsOracle, SmallestRootAndRefusals) {
     EXPECT_THROW(BallsOracle({{{0, 0, 0}, 1}, {{2, 0, 0}, 1}}), InvalidInput);  // touching
 }
 
+TEST(BallsOracle, StrictSkipsAGrazedBallForTheNextOne) {
+    // The ray along x at y = 1 touches ball 0 at (0, 1, 0), then crosses ball 1 at x = 5 − √0.75.
+    const std::vector<Ball> balls{{{0, 0, 0}, 1}, {{5, 0.5, 0}, 1}};
+    const BallsOracle o(balls), strict(balls, {.strict = true});
+    const auto g = o.cast({-3, 1, 0}, kX, 100);
+    ASSERT_TRUE(g);
+    EXPECT_TRUE(g->grazing);
+    EXPECT_NEAR(g->t, 3, 1e-9);
+    const auto s = strict.cast({-3, 1, 0}, kX, 100);
+    ASSERT_TRUE(s);
+    EXPECT_FALSE(s->grazing);
+    EXPECT_NEAR(s->t, 8 - std::sqrt(0.75), 1e-12);
+    // segment_is_free is conservative at the tangency.
+    EXPECT_FALSE(o.segment_is_free({-3, 1, 0}, {2, 1, 0}));
+    EXPECT_TRUE(o.segment_is_free({-3, 1.001, 0}, {2, 1.001, 0}));
+}
+
+TEST(EllipsoidOracle, StartOnS) {
+    const EllipsoidOracle o(Ellipsoid({0, 0, 0}, 3, 2, 1));
+    EXPECT_FALSE(o.cast({3, 0, 0}, kX, 10));  // leaving
+    const auto in = o.cast({3, 0, 0}, -kX, 10);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->t, 0);
+    EXPECT_FALSE(in->grazing);
+}
+
 TEST(Genus2Oracle, TopologyAndHitsAgreeWithTheImplicit) {
     const Genus2Oracle o;
     EXPECT_EQ(o.euler_characteristic(), -2);
