@@ -393,6 +393,26 @@ TEST(MeshOracle, GenusTwoFile) {
         EXPECT_LT(distance(p, setup.omega.center), setup.omega.radius * 0.95);
 }
 
+TEST(MakeProbeObject, DefectiveMeshFilesAreRefusedWithTheirName) {
+    const auto border = test::shared_data("meshes/defective/mesh_with_border.off").string();
+    try {
+        (void)make_probe_object(border);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("mesh_with_border.off"), std::string::npos) << m;
+        EXPECT_NE(m.find("not closed"), std::string::npos) << m;
+    }
+    const auto pinched = test::shared_data("meshes/defective/cow_nonmanifold_vertex.obj").string();
+    try {
+        (void)make_probe_object(pinched);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("2-manifold"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)make_probe_object("/nonexistent/mesh.off"), IoError);
+}
+
 TEST(MakeProbeObject, Specs) {
     const auto t = make_probe_object("torus:2,0.5");
     EXPECT_NE(dynamic_cast<const TorusOracle*>(t.object.get()), nullptr);
