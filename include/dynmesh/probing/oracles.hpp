@@ -10,6 +10,11 @@
 ///   (conservative, spec §8.1: an edge is never declared free through a tangency).
 /// - `strict` (constructor option): grazing contacts are ignored by cast() (spec §8.1, the
 ///   model of the paper); the search goes on past them.
+/// - sample_surface(spacing): for the sphere, ellipsoid, torus and balls, ceil(area / spacing²)
+///   points per surface drawn by the shape's sample_uniform with seed 1 (reproducible); for
+///   the genus-2 surface the crossings of S with a grid of that spacing; for meshes the
+///   vertices plus a grid on every triangle.
+/// - Every query is const and keeps no mutable state: objects can be shared between threads.
 
 #include <memory>
 #include <string>
