@@ -14,7 +14,8 @@
 ///   points per surface drawn by the shape's sample_uniform with seed 1 (reproducible); for
 ///   the genus-2 surface the crossings of S with a grid of that spacing; for meshes the
 ///   vertices plus a grid on every triangle.
-/// - Every query is const and keeps no mutable state: objects can be shared between threads.
+/// - Every query is const (thread safety is not promised: the mesh oracle uses lazily built
+///   CGAL search structures).
 
 #include <memory>
 #include <string>
