@@ -8,6 +8,7 @@
 #include "dynmesh/io/input_file.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/probing/oracles.hpp"
+#include "dynmesh/probing/oracles2.hpp"
 #include "dynmesh/shapes/surface.hpp"
 
 namespace dynmesh {
@@ -83,6 +84,21 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
         }
         out.object = std::make_unique<BallsOracle>(std::move(balls), options);
         out.omega = omega_of(box);
+    } else if (has_prefix("circle2:") || has_prefix("star2:")) {
+        const bool circle = has_prefix("circle2:");
+        const std::string arg = spec.substr(circle ? 8 : 6);
+        double r = 0;
+        if (!detail::parse_double(arg, r) || !std::isfinite(r) || !(r > 0))
+            throw InvalidInput("make_probe_object: '" + spec + "': the radius must be a positive "
+                               "number");
+        std::unique_ptr<PlanarStarOracle> o;
+        if (circle)
+            o = std::make_unique<CircleOracle2>(Point2{0, 0}, r, options);
+        else
+            o = std::make_unique<StarOracle2>(Point2{0, 0}, r, options);
+        out.interior_points = {o->interior_point()};
+        out.omega = o->default_omega();
+        out.object = std::move(o);
     } else if (spec == "genus2") {
         out.object = std::make_unique<Genus2Oracle>(options);
         out.interior_points = {Genus2Oracle::interior_point()};
@@ -90,7 +106,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
     } else if (spec.empty() || spec.find(':') != std::string::npos) {
         throw InvalidInput("make_probe_object: unknown object '" + spec +
                            "' (expected sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE, "
-                           "genus2 or a mesh file)");
+                           "genus2, circle2:R, star2:R or a mesh file)");
     } else {
         const TriangleSoup soup = read_soup(spec);
         std::unique_ptr<MeshOracle> mesh;

@@ -150,14 +150,16 @@ std::optional<ProbeHit> MeshOracle::cast_checked(const Point3& s, const Vec3& d,
         const K::Ray_3 ray(to_cgal(from), K::Vector_3(d.x, d.y, d.z));
         const auto r = impl_->tree.first_intersection(ray);
         if (!r) return std::nullopt;
-        Point3 x;
+        Point3 x, far;
         bool in_plane = false;
         if (const auto* p = boost::get<K::Point_3>(&r->first)) {
-            x = from_cgal(*p);
+            x = far = from_cgal(*p);
         } else {
             const auto& seg = boost::get<K::Segment_3>(r->first);
             const Point3 a = from_cgal(seg.source()), b = from_cgal(seg.target());
-            x = sqdistance(a, from) <= sqdistance(b, from) ? a : b;
+            const bool a_first = sqdistance(a, from) <= sqdistance(b, from);
+            x = a_first ? a : b;
+            far = a_first ? b : a;
             in_plane = true;
         }
         const double t = dot(x - s, d);
@@ -170,7 +172,7 @@ std::optional<ProbeHit> MeshOracle::cast_checked(const Point3& s, const Vec3& d,
         const double cos = in_plane ? 0.0 : dot(impl_->face_normal(r->second), d);
         ProbeHit hit{x, t, false};
         if (accept(hit, cos, t_max, strict, in_plane || !enters)) return hit;
-        from = x + eta * d;  // strict: go on past the grazing contact
+        from = far + eta * d;  // strict: go on past the grazing contact
     }
     return std::nullopt;
 }

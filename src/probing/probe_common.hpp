@@ -3,11 +3,13 @@
 /// quadric root rule shared by spheres, ellipsoids and balls, and the sphere-tracing march
 /// shared by the torus and the genus-2 surface.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
 
+#include "dynmesh/error.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/probing/oracle.hpp"
 
@@ -44,9 +46,13 @@ bool sphere_trace(const Point3& s, const Vec3& d, double t_max, double tau, doub
     double min_f = std::numeric_limits<double>::infinity(), t_min = 0;
     bool near_zone = false;
     constexpr long kMaxSteps = 50'000'000;
-    for (long step = 0; t <= t_end && step < kMaxSteps; ++step) {
+    for (long step = 0; t <= t_end; ++step) {
+        if (step == kMaxSteps)  // hovering within h of S for 5e7 steps: a bug, not an input
+            throw InternalError("sphere_trace: no decision after 5e7 steps from " +
+                                format_point(s));
         const double t_next = t + std::max(std::fabs(f), h);
         const double f_next = sd(at(t_next));
+        if (!std::isfinite(t_next) || !std::isfinite(f_next)) break;  // gone to infinity
         if (f >= 0 && f_next < 0) {
             // A sign change: bisection on the implicit, lo outside, hi inside.
             double lo = t, hi = t_next;

@@ -77,16 +77,21 @@ TEST(ProbingDevice, ExteriorMoveLengthIsTheArcFormula) {
 }
 
 TEST(ProbingDevice, MonitorChecksTheExteriorPath) {
-    // An Ω that cuts through the object: the arc on ∂Ω passes through O.
-    const SphereOracle big(Sphere({0, 0, 0}, 1));
-    const Ball tight{{0, 0, 0.5}, 1};
-    ProbingDevice dev(big, tight, &big);
-    dev.place({0, 0, 1.5});
-    EXPECT_THROW(dev.move_exterior({0, 0, -0.5 - 1e-9}), UnsafeMove);
-    ProbingDevice blind(big, tight);
-    blind.place({0, 0, 1.5});
-    blind.move_exterior({0, 0, -0.5});
-    EXPECT_NEAR(blind.counters().exterior_length, std::numbers::pi, 1e-12);
+    // An Ω whose boundary cuts through the object: the arc from angle 0 to 120° in the xy
+    // plane passes through the ball's centre (0, 1.2, 0), while both ends are free.
+    const SphereOracle ball(Sphere({0, 1.2, 0}, 0.5));
+    const Ball omega{{0, 0, 0}, 1.2};
+    const Point3 a{1.2, 0, 0}, b{-0.6, 1.2 * std::sqrt(0.75), 0};
+    ASSERT_TRUE(ball.is_free(a) && ball.is_free(b));
+    ProbingDevice dev(ball, omega, &ball);
+    dev.place(a);
+    EXPECT_THROW(dev.move_exterior(b), UnsafeMove);
+    EXPECT_EQ(dev.position(), a);
+    EXPECT_EQ(dev.counters().exterior_moves, 0u);
+    ProbingDevice blind(ball, omega);
+    blind.place(a);
+    blind.move_exterior(b);
+    EXPECT_NEAR(blind.counters().exterior_length, 1.2 * 2 * std::numbers::pi / 3, 1e-12);
 }
 
 TEST(ProbingDevice, CastCountsProbes) {

@@ -106,6 +106,10 @@ TEST(TorusOracle, KnownHits) {
     EXPECT_NEAR(hole->t, 1, 1e-12);
     EXPECT_FALSE(o.cast({0, 0, 0}, kY, 1 - 1e-9));
     EXPECT_THROW((void)o.cast({2, 0, 0}, kX, 1), InvalidInput);
+    // An unbounded ray: t_max = +infinity.
+    EXPECT_FALSE(o.cast({5, 0, 0}, kX, INFINITY));
+    ASSERT_TRUE(o.cast({5, 0, 0}, -kX, INFINITY));
+    EXPECT_THROW((void)o.cast({5, 0, 0}, -kX, NAN), InvalidInput);
     // Oblique rays: the implicit changes sign at the hit, and the hit is the first one.
     const Vec3 d = normalized(Vec3{-1, 0.3, -0.4});
     const Point3 s{6, -1, 2.5};
@@ -160,6 +164,32 @@ TEST(BallsOracle, SmallestRootAndRefusals) {
         EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos);
     }
     EXPECT_THROW(BallsOracle({{{0, 0, 0}, 1}, {{2, 0, 0}, 1}}), InvalidInput);  // touching
+}
+
+TEST(BallsOracle, StrictSkipsAGrazedBallForTheNextOne) {
+    // The ray along x at y = 1 touches ball 0 at (0, 1, 0), then crosses ball 1 at x = 5 − √0.75.
+    const std::vector<Ball> balls{{{0, 0, 0}, 1}, {{5, 0.5, 0}, 1}};
+    const BallsOracle o(balls), strict(balls, {.strict = true});
+    const auto g = o.cast({-3, 1, 0}, kX, 100);
+    ASSERT_TRUE(g);
+    EXPECT_TRUE(g->grazing);
+    EXPECT_NEAR(g->t, 3, 1e-9);
+    const auto s = strict.cast({-3, 1, 0}, kX, 100);
+    ASSERT_TRUE(s);
+    EXPECT_FALSE(s->grazing);
+    EXPECT_NEAR(s->t, 8 - std::sqrt(0.75), 1e-12);
+    // segment_is_free is conservative at the tangency.
+    EXPECT_FALSE(o.segment_is_free({-3, 1, 0}, {2, 1, 0}));
+    EXPECT_TRUE(o.segment_is_free({-3, 1.001, 0}, {2, 1.001, 0}));
+}
+
+TEST(EllipsoidOracle, StartOnS) {
+    const EllipsoidOracle o(Ellipsoid({0, 0, 0}, 3, 2, 1));
+    EXPECT_FALSE(o.cast({3, 0, 0}, kX, 10));  // leaving
+    const auto in = o.cast({3, 0, 0}, -kX, 10);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->t, 0);
+    EXPECT_FALSE(in->grazing);
 }
 
 TEST(Genus2Oracle, TopologyAndHitsAgreeWithTheImplicit) {
@@ -222,6 +252,47 @@ TEST(Genus2Oracle, ShallowChordsAreNotSkipped) {
     EXPECT_GT(tested, 50);
 }
 
+/// Gauss–Bonnet on the implicit: ∫ K dA / 2π by the coarea formula on a grid (δ(f) smoothed
+/// to a box of half-width w), K from the finite-difference Hessian of f.
+double numeric_euler(const Genus2Oracle& o) {
+    const Bbox3 b = Genus2Oracle::bbox();
+    constexpr double g = 0.015, w = 0.015, e = 1e-5;
+    double sum = 0;
+    for (double x = b.min.x + g / 2; x < b.max.x; x += g)
+        for (double y = b.min.y + g / 2; y < b.max.y; y += g)
+            for (double z = b.min.z + g / 2; z < b.max.z; z += g) {
+                const Point3 p{x, y, z};
+                if (std::fabs(o.value(p)) >= w) continue;
+                const Vec3 n = o.gradient(p);
+                double H[3][3];
+                for (std::size_t i = 0; i < 3; ++i) {
+                    Vec3 dx{};
+                    dx[i] = e;
+                    const Vec3 gp = o.gradient(p + dx), gm = o.gradient(p - dx);
+                    for (std::size_t j = 0; j < 3; ++j) H[j][i] = (gp[j] - gm[j]) / (2 * e);
+                }
+                // K = n^T adj(H) n / |n|^4.
+                const double adj[3][3] = {
+                    {H[1][1] * H[2][2] - H[1][2] * H[2][1], H[0][2] * H[2][1] - H[0][1] * H[2][2],
+                     H[0][1] * H[1][2] - H[0][2] * H[1][1]},
+                    {H[1][2] * H[2][0] - H[1][0] * H[2][2], H[0][0] * H[2][2] - H[0][2] * H[2][0],
+                     H[0][2] * H[1][0] - H[0][0] * H[1][2]},
+                    {H[1][0] * H[2][1] - H[1][1] * H[2][0], H[0][1] * H[2][0] - H[0][0] * H[2][1],
+                     H[0][0] * H[1][1] - H[0][1] * H[1][0]}};
+                double k = 0;
+                for (std::size_t i = 0; i < 3; ++i)
+                    for (std::size_t j = 0; j < 3; ++j) k += n[i] * adj[i][j] * n[j];
+                const double nn = sqnorm(n);
+                sum += k / (nn * nn) * std::sqrt(nn);
+            }
+    return sum * g * g * g / (2 * w) / (2 * std::numbers::pi);
+}
+
+TEST(Genus2Oracle, EulerCharacteristicByGaussBonnet) {
+    const Genus2Oracle o;
+    EXPECT_NEAR(numeric_euler(o), o.euler_characteristic(), 0.15);
+}
+
 TEST(Genus2Oracle, Area) {
     const Genus2Oracle o;
     // Two full tori would be 2 · 4π² · 1 · 0.4 = 31.58; the neck removes a little.
@@ -270,6 +341,29 @@ TEST(MeshOracle, StartOnTheMeshLeaving) {
     EXPECT_NEAR(again->t, 0, 1e-9);
 }
 
+TEST(MeshOracle, ContactsAlongAnEdgeOrAtAVertexAreGrazing) {
+    const TriangleSoup octa = test::octahedron().to_soup();
+    const MeshOracle o(octa), strict(octa, {.strict = true});
+    // Along the line of the edge (1,0,0)-(0,1,0): in the plane of both its faces.
+    const Vec3 d = normalized(Vec3{-1, 1, 0});
+    const auto e = o.cast({2, -1, 0}, d, 10);
+    ASSERT_TRUE(e);
+    EXPECT_TRUE(e->grazing);
+    EXPECT_NEAR(e->t, std::sqrt(2.0), 1e-12);
+    EXPECT_FALSE(strict.cast({2, -1, 0}, d, 10));
+    // Touching the apex (0, 0, 1) from the side.
+    const auto v = o.cast({-2, 0, 1}, kX, 10);
+    ASSERT_TRUE(v);
+    EXPECT_TRUE(v->grazing);
+    EXPECT_NEAR(v->t, 2, 1e-12);
+    EXPECT_FALSE(strict.cast({-2, 0, 1}, kX, 10));
+    // A transverse crossing is not grazing.
+    const auto t = o.cast({0.1, 0.1, 3}, -kZ, 10);
+    ASSERT_TRUE(t);
+    EXPECT_FALSE(t->grazing);
+    EXPECT_NEAR(t->t, 2.2, 1e-12);
+}
+
 TEST(MeshOracle, RefusesOpenAndInconsistentMeshes) {
     TriangleSoup open = unit_icosphere(1);
     open.triangles.pop_back();
@@ -297,6 +391,26 @@ TEST(MeshOracle, GenusTwoFile) {
     // Ω contains S with margin: every vertex is well inside.
     for (const Point3& p : setup.object->sample_surface(1e9))
         EXPECT_LT(distance(p, setup.omega.center), setup.omega.radius * 0.95);
+}
+
+TEST(MakeProbeObject, DefectiveMeshFilesAreRefusedWithTheirName) {
+    const auto border = test::shared_data("meshes/defective/mesh_with_border.off").string();
+    try {
+        (void)make_probe_object(border);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("mesh_with_border.off"), std::string::npos) << m;
+        EXPECT_NE(m.find("not closed"), std::string::npos) << m;
+    }
+    const auto pinched = test::shared_data("meshes/defective/cow_nonmanifold_vertex.obj").string();
+    try {
+        (void)make_probe_object(pinched);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("2-manifold"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)make_probe_object("/nonexistent/mesh.off"), IoError);
 }
 
 TEST(MakeProbeObject, Specs) {

@@ -10,6 +10,12 @@
 ///   (conservative, spec §8.1: an edge is never declared free through a tangency).
 /// - `strict` (constructor option): grazing contacts are ignored by cast() (spec §8.1, the
 ///   model of the paper); the search goes on past them.
+/// - sample_surface(spacing): for the sphere, ellipsoid, torus and balls, ceil(area / spacing²)
+///   points per surface drawn by the shape's sample_uniform with seed 1 (reproducible); for
+///   the genus-2 surface the crossings of S with a grid of that spacing; for meshes the
+///   vertices plus a grid on every triangle.
+/// - Every query is const (thread safety is not promised: the mesh oracle uses lazily built
+///   CGAL search structures).
 
 #include <memory>
 #include <string>
@@ -242,7 +248,8 @@ struct ProbeSetup {
 
 /// Builds the object of `spec`: "sphere:R", "ellipsoid:a,b,c", "torus:R,r" (with the
 /// optional "@cx,cy,cz" of make_surface), "balls:FILE" (lines "x y z r", '#' comments; read
-/// with read_input_file, errors "<file>:<line>: ..."), "genus2", or a mesh file path read with
+/// with read_input_file, errors "<file>:<line>: ..."), "genus2", the planar curves "circle2:R"
+/// and "star2:R" of oracles2.hpp (centred at the origin), or a mesh file path read with
 /// read_soup (any other spec with a ':' is refused as an unknown object). Ω is the ball
 /// circumscribing the bounding box, enlarged by 10% of its radius.
 /// \throw InvalidInput for a malformed spec or an object the oracle refuses; IoError for an
