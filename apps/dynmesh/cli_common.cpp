@@ -23,6 +23,28 @@ const std::string& exit_code_help() {
     return text;
 }
 
+std::optional<std::vector<double>> parse_number_list(const std::string& text) {
+    std::vector<double> v;
+    std::size_t at = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', at);
+        std::string t = text.substr(at, comma == std::string::npos ? comma : comma - at);
+        t.erase(0, t.find_first_not_of(" \t"));
+        t.erase(t.find_last_not_of(" \t") + 1);
+        std::size_t used = 0;
+        double x = 0;
+        try {
+            x = std::stod(t, &used);
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+        if (used != t.size() || !std::isfinite(x)) return std::nullopt;
+        v.push_back(x);
+        if (comma == std::string::npos) return v;
+        at = comma + 1;
+    }
+}
+
 const CLI::Validator& finite_number() {
     static const CLI::Validator v(
         [](std::string& s) {

@@ -74,6 +74,9 @@ void add_common_options(CLI::App& app, CommonOptions& common);
 
 /// A CLI11 validator that rejects NaN and infinities (CLI::Range lets NaN through).
 const CLI::Validator& finite_number();
+/// "a,b,c": comma-separated finite numbers (blanks around each allowed), as --domain and
+/// --omega take them; nullopt if any piece is not a finite number.
+[[nodiscard]] std::optional<std::vector<double>> parse_number_list(const std::string& text);
 
 /// The outputs of one run (OutputSet) plus its --report: every output is registered up
 /// front, written to its staging path, and moved into place by commit() only when all of

@@ -32,27 +32,12 @@ struct ProbeArgs {
 
 /// "x,y,z" or "x,y,z,r" with finite numbers. \throw UsageError naming the option.
 std::vector<double> parse_tuple(const std::string& text, std::size_t n, const std::string& option) {
-    std::vector<double> v;
-    std::size_t at = 0;
-    while (at <= text.size()) {
-        const std::size_t comma = text.find(',', at);
-        const std::string t = text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-        std::size_t used = 0;
-        double x = NAN;
-        try {
-            x = std::stod(t, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != t.size() || !std::isfinite(x))
-            throw UsageError(option + " " + text + ": expected " + std::to_string(n) + " finite numbers separated by commas");
-        v.push_back(x);
-        if (comma == std::string::npos) break;
-        at = comma + 1;
-    }
-    if (v.size() != n)
-        throw UsageError(option + " " + text + ": expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
-    return v;
+    const std::optional<std::vector<double>> v = parse_number_list(text);
+    if (!v)
+        throw UsageError(option + " " + text + ": expected " + std::to_string(n) + " finite numbers separated by commas");
+    if (v->size() != n)
+        throw UsageError(option + " " + text + ": expected " + std::to_string(n) + " numbers, got " + std::to_string(v->size()));
+    return *v;
 }
 
 void run_probe(const ProbeArgs& a, RunContext& ctx) {

@@ -82,19 +82,6 @@ std::string fmt_double(double v) {
     return buf;
 }
 
-/// Parses a whole token as a double; nullopt if it is not one.
-std::optional<double> parse_number(const std::string& t) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(t, &used);
-    } catch (const std::exception&) {
-        return std::nullopt;
-    }
-    if (used != t.size()) return std::nullopt;
-    return v;
-}
-
 /// The update script as operations on D-dimensional points.
 template <int D>
 std::vector<Op<D>> read_ops(const std::string& path) {
@@ -138,19 +125,9 @@ QuadtreeOptions<D> choose_domain(const std::string& spec, const std::vector<Poin
                                 "' with finite numbers and W > 0 (--dim " + std::to_string(D) +
                                 "), got '" + spec + "'");
         };
-        std::vector<double> v;
-        std::size_t at = 0;
-        while (true) {
-            const std::size_t comma = spec.find(',', at);
-            std::string t = spec.substr(at, comma == std::string::npos ? comma : comma - at);
-            t.erase(0, t.find_first_not_of(" \t"));
-            t.erase(t.find_last_not_of(" \t") + 1);
-            const std::optional<double> x = parse_number(t);
-            if (!x || !std::isfinite(*x)) throw bad();
-            v.push_back(*x);
-            if (comma == std::string::npos) break;
-            at = comma + 1;
-        }
+        const std::optional<std::vector<double>> parsed = parse_number_list(spec);
+        if (!parsed) throw bad();
+        const std::vector<double>& v = *parsed;
         if (v.size() != kD + 1 || !(v[kD] > 0)) throw bad();
         for (std::size_t i = 0; i < kD; ++i) o.origin[i] = v[i];
         o.width = v[kD];
