@@ -2,6 +2,8 @@
 /// moves only through free space (specs/probing.md).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -12,21 +14,28 @@
 #include "commands.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/mesh_io.hpp"
-#include "dynmesh/mesh/check.hpp"
-#include "dynmesh/mesh/surface_mesh.hpp"
-#include "dynmesh/metrics/hausdorff.hpp"
+#include "dynmesh/io/points_io.hpp"
+#include "dynmesh/probing/check.hpp"
+#include "dynmesh/probing/device.hpp"
 #include "dynmesh/probing/oracles.hpp"
 #include "dynmesh/probing/refine.hpp"
 
 namespace dynmesh::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct ProbeArgs {
     std::string object, output;
     std::optional<double> eps, delta, eps_S;
     std::vector<std::string> interior;
     std::string omega;
+    int dim = 3;
+    std::string mode = "device";
+    std::string out_dir, png, sample;
+    std::size_t every = 200;
     bool check = false;
+    bool strict = false;
     CommonOptions common;
 };
 
@@ -40,9 +49,79 @@ std::vector<double> parse_tuple(const std::string& text, std::size_t n, const st
     return *v;
 }
 
+std::string format3(const Point3& p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.6g,%.6g,%.6g", p.x, p.y, p.z);
+    return buf;
+}
+
+/// Is OBJECT a file (a mesh or a balls list) rather than an analytic spec?
+/// \throw UsageError for a spec of an unknown kind ("cube:1").
+std::optional<fs::path> object_file(const std::string& object) {
+    if (object.starts_with("balls:")) return fs::path(object.substr(6));
+    if (object == "genus2") return std::nullopt;
+    for (const char* kind : {"sphere:", "ellipsoid:", "torus:", "circle2:", "star2:"})
+        if (object.starts_with(kind)) return std::nullopt;
+    if (object.empty() || object.find(':') != std::string::npos)
+        throw UsageError("unknown object '" + object +
+                         "' (expected sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE, genus2, circle2:R, "
+                         "star2:R or a mesh file)");
+    return fs::path(object);
+}
+
+bool is_planar_object(const std::string& object) {
+    return object.starts_with("circle2:") || object.starts_with("star2:");
+}
+
+/// The output (3D: the facets; 2D: the polygons) and, optionally, the device's path, as one
+/// soup with polylines: the path's points follow the mesh's.
+void add_path(TriangleSoup& soup, std::vector<std::vector<std::uint32_t>>& lines,
+              const std::vector<std::vector<Point3>>& path) {
+    for (const auto& pl : path) {
+        if (pl.size() < 2) continue;
+        std::vector<std::uint32_t> idx;
+        for (const Point3& p : pl) {
+            idx.push_back(static_cast<std::uint32_t>(soup.points.size()));
+            soup.points.push_back(p);
+        }
+        lines.push_back(std::move(idx));
+    }
+}
+
+void write_output(const ProbingResult& r, const fs::path& path, const std::vector<std::vector<Point3>>* device_path) {
+    TriangleSoup soup = r.mesh;
+    WriteOptions wo;
+    wo.polylines = r.polygons;
+    if (device_path != nullptr) add_path(soup, wo.polylines, *device_path);
+    write_soup(soup, path, wo);
+}
+
+/// Draws the final output with the device's path (scripts/plot_probe.py).
+void draw_png(const ProbingResult& r, const fs::path& png, const fs::path& scratch, const std::string& png_arg,
+              const std::string& title) {
+    const fs::path mesh = scratch / "mesh.obj", path = scratch / "path.obj";
+    write_output(r, mesh, nullptr);
+    TriangleSoup soup;
+    WriteOptions wo;
+    add_path(soup, wo.polylines, r.path);
+    write_soup(soup, path, wo);
+    run_plot_script("plot_probe.py", {png.string(), mesh.string(), path.string(), "--title", title}, "--png " + png_arg);
+}
+
 void run_probe(const ProbeArgs& a, RunContext& ctx) {
     require_writable_mesh_extension(a.output);
     if (a.eps.has_value() == a.delta.has_value()) throw UsageError("give exactly one of --eps and --delta");
+    if (a.dim != 2 && a.dim != 3) throw UsageError("--dim must be 2 or 3");
+    if (is_planar_object(a.object) != (a.dim == 2))
+        throw UsageError(a.dim == 2 ? "--dim 2: the object must be a planar curve (circle2:R or star2:R), got " + a.object
+                                    : a.object + " is a planar curve: give --dim 2");
+    if (!a.png.empty()) {
+        std::string ext = fs::path(a.png).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (ext != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
+        if (const auto why = plotting_unavailable("plot_probe.py")) throw UsageError("--png: " + *why);
+    }
+    if (a.every == 0) throw UsageError("--every must be at least 1");
     std::vector<Point3> interior;
     for (const std::string& s : a.interior) {
         const auto v = parse_tuple(s, 3, "--interior");
@@ -54,17 +133,22 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
         if (!(v[3] > 0)) throw UsageError("--omega " + a.omega + ": the radius must be > 0");
         omega = Ball{{v[0], v[1], v[2]}, v[3]};
     }
-    RunOutputs outputs(a.common, {});
-    const auto mesh_path = outputs.file(a.output, "-o");
+    const std::optional<fs::path> input = object_file(a.object);
+    RunOutputs outputs(a.common, input ? std::vector<fs::path>{*input} : std::vector<fs::path>{});
+    const fs::path mesh_path = outputs.file(a.output, "-o");
+    const fs::path sample_path = a.sample.empty() ? fs::path{} : outputs.file(a.sample, "--sample");
+    const fs::path png_path = a.png.empty() ? fs::path{} : outputs.file(a.png, "--png");
+    const fs::path out_dir = a.out_dir.empty() ? fs::path{} : outputs.directory(a.out_dir, "--out");
     ctx.inputs_begin();
 
     Progress progress("probe", a.common.quiet);
     progress.stage("reading the object");
-    const ProbeSetup setup = make_probe_object(a.object);
+    const ProbeSetup setup = make_probe_object(a.object, {.strict = a.strict});
     const ProbeObject& object = *setup.object;
+
+    // Options, checked against what the object is (usage errors, exit 2).
     ProbingOptions o;
-    o.omega_center = omega ? omega->center : setup.omega.center;
-    o.omega_radius = omega ? omega->radius : setup.omega.radius;
+    o.omega = omega ? *omega : setup.omega;
     o.interior_points = interior.empty() ? setup.interior_points : interior;
     if (a.eps_S) {
         o.eps_S = *a.eps_S;
@@ -73,72 +157,135 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     } else {
         throw UsageError(a.object + ": --eps-s is required (a polyhedron has no reach to take it from)");
     }
-    o.eps = a.eps ? *a.eps : probing_eps_from_delta(*a.delta, o.eps_S, o.omega_radius);
-    if (a.check) o.ground_truth = &object;
+    if (a.eps) o.eps = *a.eps;
+    if (a.delta) o.delta = *a.delta;
+    const double eps = o.eps > 0 ? o.eps : probing_eps_from_delta(*o.delta, o.eps_S, o.omega.radius);
+    if (!(eps < 0.091 * o.eps_S))
+        throw UsageError((a.eps ? "--eps " + std::to_string(eps) : "--delta " + std::to_string(*a.delta) +
+                                                                     " gives eps = " + std::to_string(eps)) +
+                         ", which is not below 0.091 * eps_S = " + std::to_string(0.091 * o.eps_S) +
+                         ": the output would carry no guarantee");
+    for (const Point3& p : o.interior_points) {
+        if (a.dim == 2 && p.z != 0) throw UsageError("--interior " + format3(p) + ": a 2D run needs z = 0");
+        if (object.is_free(p))
+            throw UsageError("--interior " + format3(p) + ": the point is not inside the object");
+    }
+    {
+        double reach = 0;
+        for (const Point3& q : object.sample_surface(o.omega.radius / 64))
+            reach = std::max(reach, distance(q, o.omega.center));
+        if (!(reach < o.omega.radius * (1 - 1e-6)))
+            throw UsageError("--omega " + format3(o.omega.center) + "," + std::to_string(o.omega.radius) +
+                             ": the object reaches " + std::to_string(reach) +
+                             " from the centre: Omega must contain it with a margin");
+    }
+    o.mode = a.mode == "omniscient" ? ProbingMode::Omniscient : ProbingMode::Device;
+    if (a.check || o.mode == ProbingMode::Omniscient) o.ground_truth = &object;
     o.check_every = a.check ? 0 : SIZE_MAX;
+    o.record_path = !png_path.empty() || !out_dir.empty();
+
+    std::vector<std::pair<double, std::string>> series;
+    if (!out_dir.empty()) {
+        o.snapshot_every = a.every;
+        o.on_snapshot = [&](const ProbingSnapshot& s) {
+            char name[64];
+            std::snprintf(name, sizeof name, "probe_%07zu.vtp", s.insertions);
+            TriangleSoup soup = *s.mesh;
+            WriteOptions wo;
+            wo.polylines = *s.polygons;
+            add_path(soup, wo.polylines, *s.path);
+            write_soup(soup, out_dir / name, wo);
+            series.emplace_back(static_cast<double>(s.insertions), name);
+        };
+    }
+    o.on_progress = [&](const ProbingProgress& p) {
+        progress.detail(std::to_string(p.insertions) + " samples inserted, " + std::to_string(p.probes) + " probes");
+    };
 
     progress.stage("probing");
-    const ProbingResult r = probe_surface(object, o);
+    const ProbingResult r = a.dim == 3 ? probe_surface(object, o) : probe_curve(object, o);
 
     progress.stage("checking");
-    const SurfaceMesh mesh = SurfaceMesh::from_soup(r.mesh);
-    const MeshCheckReport mc = check_mesh(mesh, {.require_closed = true});
-    std::optional<double> hausdorff;
-    if (mesh.n_faces() > 0) {
-        double to_s = 0;
-        for (const Point3& p : mesh_sample_points(mesh, 2)) to_s = std::max(to_s, object.distance(p));
-        const double from_s = max_distance_to_mesh(
-            mesh, object.sample_surface(std::max(o.eps / 4, std::sqrt(object.area() / 2e5))));
-        hausdorff = std::max(to_s, from_s);
-    }
-    std::vector<std::string> problems = r.problems;
+    const ProbingCheckReport chk = check_probing(r, object, o, a.dim);
+    // Without --check a broken topology still fails the run (every exit-0 output is a closed
+    // manifold); with it, every check counts.
+    std::vector<std::string> problems;
     if (a.check) {
-        if (!mc.ok()) problems.push_back("the output is not a closed oriented 2-manifold: " + mc.summary());
-        if (mc.euler != object.euler_characteristic())
-            problems.push_back("Euler characteristic " + std::to_string(mc.euler) + ", the object's is " +
-                               std::to_string(object.euler_characteristic()));
-        if (static_cast<int>(mc.components) != object.components())
-            problems.push_back(std::to_string(mc.components) + " components, the object has " +
-                               std::to_string(object.components()));
-        if (r.report.max_ball_radius > o.eps)
-            problems.push_back("a restricted ball of radius " + std::to_string(r.report.max_ball_radius) +
-                               " exceeds eps = " + std::to_string(o.eps));
+        problems = chk.problems;
+    } else if (!chk.closed_manifold) {
+        problems.push_back("the output is not a closed manifold (run with --check for the details)");
     }
-    if (problems.empty()) require_valid_output(mesh, "probe");
 
-    write_mesh(mesh, mesh_path);
+    progress.stage("writing");
+    write_output(r, mesh_path, nullptr);
+    if (!sample_path.empty()) write_points_xyz(r.sample, sample_path);
+    if (!out_dir.empty()) {
+        write_pvd(out_dir / "probe.pvd", series);
+        TriangleSoup soup;
+        WriteOptions wo;
+        add_path(soup, wo.polylines, r.path);
+        write_soup(soup, out_dir / "path.vtp", wo);
+    }
+    if (!png_path.empty()) {
+        progress.stage("drawing " + a.png);
+        char title[256];
+        std::snprintf(title, sizeof title, "%s, eps %.4g: %zu vertices, %zu probes, path %.4g", a.object.c_str(),
+                      r.report.eps, r.report.vertices, r.report.probes, r.report.path_length);
+        draw_png(r, png_path, outputs.scratch(a.png), a.png, title);
+    }
     const ProbingReport& p = r.report;
     nlohmann::json rep = {{"command", "probe"},
                           {"object", a.object},
+                          {"dim", a.dim},
+                          {"mode", a.mode},
                           {"output", a.output},
-                          {"eps", o.eps},
+                          {"eps", p.eps},
                           {"eps_S", o.eps_S},
-                          {"omega", {{"center", {o.omega_center.x, o.omega_center.y, o.omega_center.z}},
-                                     {"radius", o.omega_radius}}},
+                          {"omega", {{"center", {o.omega.center.x, o.omega.center.y, o.omega.center.z}},
+                                     {"radius", o.omega.radius}}},
+                          {"interior_points", nlohmann::json::array()},
                           {"probes", p.probes},
                           {"probes_bootstrap", p.probes_bootstrap},
+                          {"probes_inferred", p.probes_inferred},
                           {"voronoi_edges_travelled", p.voronoi_edges_travelled},
                           {"detection_edges", p.detection_edges},
                           {"positioning_edges", p.positioning_edges},
+                          {"voronoi_edges_created", p.voronoi_edges_created},
                           {"path_length", p.path_length},
                           {"exterior_path_length", p.exterior_path_length},
                           {"cells_created", p.cells_created},
                           {"nodes_retained", p.nodes_retained},
+                          {"activations", p.activations},
+                          {"detect_access_calls", p.detect_access_calls},
+                          {"insertions", p.insertions},
+                          {"queue_pushes", p.queue_pushes},
+                          {"stale_pops", p.stale_pops},
+                          {"nonempty_pops", p.nonempty_pops},
                           {"grazing_hits", p.grazing_hits},
+                          {"reinitialisations", p.reinitialisations},
                           {"vertices", p.vertices},
                           {"facets", p.facets},
-                          {"euler", mc.euler},
+                          {"euler", chk.euler},
+                          {"components", chk.components},
                           {"max_ball_radius", p.max_ball_radius},
+                          {"hausdorff", chk.hausdorff},
+                          {"hausdorff_bound", chk.hausdorff_bound},
+                          {"sample_gap", chk.sample_gap},
                           {"seconds", p.seconds}};
-    if (hausdorff) rep["hausdorff"] = *hausdorff;
+    if (o.delta) rep["delta"] = *o.delta;
+    for (const Point3& q : o.interior_points) rep["interior_points"].push_back({q.x, q.y, q.z});
     if (a.check) rep["check"] = {{"problems", problems}, {"segments_checked", p.segments_checked}};
     outputs.report(rep);
     outputs.commit();
-    std::cout << "probe: " << p.vertices << " vertices, " << p.facets << " facets, Euler " << mc.euler << "; "
-              << p.probes << " probes, " << p.voronoi_edges_travelled << " Voronoi edges travelled, "
-              << p.seconds << " s\n  wrote " << a.output << "\n";
+    if (!a.common.quiet) {
+        std::cout << "probe: " << p.vertices << " vertices, " << p.facets << (a.dim == 3 ? " facets" : " edges")
+                  << ", Euler " << chk.euler << ", Hausdorff " << chk.hausdorff << " (bound " << chk.hausdorff_bound
+                  << "); " << p.probes << " probes, " << p.voronoi_edges_travelled << " Voronoi edges travelled, path "
+                  << p.path_length << ", " << p.seconds << " s\n  wrote " << a.output << "\n";
+        for (const std::string& s : problems) std::cout << "  check: " << s << "\n";
+    }
     if (!problems.empty())
-        throw CheckFailed(std::to_string(problems.size()) + " problems: " + problems.front());
+        throw CheckFailed(std::to_string(problems.size()) + " problem(s); first: " + problems.front());
 }
 
 }  // namespace
@@ -150,10 +297,13 @@ void register_probe(CLI::App& root, int& result) {
         "Mesh an unknown object by probing it: a device that moves only through free space casts "
         "rays along Voronoi edges; Chew-style refinement until no restricted ball exceeds eps");
     sub->add_option("object", args->object,
-                    "sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE ('x y z r' lines), genus2, or a "
-                    "closed triangle mesh file (then --eps-s is required)")
+                    "sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE ('x y z r' lines, disjoint), genus2, a "
+                    "closed triangle mesh file (then --eps-s is required), or with --dim 2 the planar "
+                    "curves circle2:R, star2:R")
         ->required();
-    sub->add_option("-o,--output", args->output, "The mesh (.off .obj .ply .vtk .vtp)")->required();
+    sub->add_option("-o,--output", args->output,
+                    "The mesh (.off .obj .ply .vtk .vtp); with --dim 2 the closed polyline in the same formats")
+        ->required();
     sub->add_option("--eps", args->eps, "Refinement size: no restricted Delaunay ball larger than this")
         ->check(finite_number())
         ->check(CLI::PositiveNumber);
@@ -171,9 +321,24 @@ void register_probe(CLI::App& root, int& result) {
     sub->add_option("--omega", args->omega,
                     "cx,cy,cz,r: a ball containing the object with a margin (default: around its "
                     "bounding box)");
+    sub->add_option("--dim", args->dim, "2 for a closed planar curve (circle2:R, star2:R), 3 for a surface")
+        ->check(CLI::IsMember({2, 3}));
+    sub->add_option("--mode", args->mode,
+                    "device: the paper's moving device; omniscient: the same refinement testing every "
+                    "Voronoi edge from anywhere, without moving (the baseline)")
+        ->check(CLI::IsMember({"device", "omniscient"}));
+    sub->add_option("--out", args->out_dir,
+                    "Directory for a ParaView series of the refinement (probe.pvd, probe_NNNNNNN.vtp every "
+                    "--every insertions with the device's path since the previous one) and path.vtp");
+    sub->add_option("--every", args->every, "Insertions between two --out snapshots (default 200)");
+    sub->add_option("--png", args->png, "Picture of the final mesh with the device's path");
+    sub->add_option("--sample", args->sample, "The sample (x y z lines)");
+    sub->add_flag("--strict", args->strict,
+                  "Ignore grazing (tangent) contacts instead of reporting them as hits (the paper's model)");
     sub->add_flag("--check", args->check,
                   "Verify every move of the device against the object, the invariants of the run, and "
-                  "that the output is a closed 2-manifold of the object's topology with every ball <= eps");
+                  "that the output is a closed manifold of the object's topology, every ball <= eps, a "
+                  "2eps-sample, Hausdorff within 4.5 diam eps^2 / eps_S^2");
     add_common_options(*sub, args->common);
     sub->callback([args, &result] { result = guarded("probe", [&](RunContext& ctx) { run_probe(*args, ctx); }); });
 }

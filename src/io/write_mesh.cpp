@@ -1,6 +1,7 @@
 // Writing side of mesh_io.hpp: OFF, OBJ, PLY, legacy VTK, VTK XML PolyData and PVD.
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <string>
@@ -71,11 +72,27 @@ void put_triangle(AtomicWriter& out, const std::array<std::uint32_t, 3>& t, std:
     out.put_number(t[2] + base);
 }
 
-void write_off(AtomicWriter& out, const TriangleSoup& soup) {
+using Polylines = std::vector<std::vector<std::uint32_t>>;
+
+/// Segments of all polylines (a polyline of k indices has k - 1).
+std::uint64_t segment_count(const Polylines& polylines) {
+    std::uint64_t n = 0;
+    for (const auto& p : polylines) n += p.size() - 1;
+    return n;
+}
+
+/// Indices of all polylines, plus one count per polyline (the legacy VTK cell-array size).
+std::uint64_t vtk_cell_array_size(const Polylines& polylines) {
+    std::uint64_t n = 0;
+    for (const auto& p : polylines) n += p.size() + 1;
+    return n;
+}
+
+void write_off(AtomicWriter& out, const TriangleSoup& soup, const Polylines& polylines) {
     out.put("OFF\n");
     out.put_number(std::uint64_t{soup.points.size()});
     out.put(' ');
-    out.put_number(std::uint64_t{soup.triangles.size()});
+    out.put_number(std::uint64_t{soup.triangles.size()} + segment_count(polylines));
     out.put(" 0\n");
     for (const Point3& p : soup.points) {
         put_point(out, p);
@@ -86,9 +103,21 @@ void write_off(AtomicWriter& out, const TriangleSoup& soup) {
         put_triangle(out, t, 0);
         out.put('\n');
     }
+    // OFF has no line element: each segment is a face of two vertices.
+    for (const auto& p : polylines)
+        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+            out.put("2 ");
+            out.put_number(p[i]);
+            out.put(' ');
+            out.put_number(p[i + 1]);
+            out.put('\n');
+        }
 }
 
-void write_obj(AtomicWriter& out, const TriangleSoup& soup) {
+/// Indices per physical line of an OBJ `l` statement before a backslash continues it.
+constexpr std::size_t kObjIndicesPerLine = 1024;
+
+void write_obj(AtomicWriter& out, const TriangleSoup& soup, const Polylines& polylines) {
     out.put("# written by dynmesh\n");
     for (const Point3& p : soup.points) {
         out.put("v ");
@@ -98,6 +127,15 @@ void write_obj(AtomicWriter& out, const TriangleSoup& soup) {
     for (const auto& t : soup.triangles) {
         out.put("f ");
         put_triangle(out, t, 1);
+        out.put('\n');
+    }
+    for (const auto& p : polylines) {
+        out.put('l');
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            if (i > 0 && i % kObjIndicesPerLine == 0) out.put(" \\\n");
+            out.put(' ');
+            out.put_number(p[i] + 1);
+        }
         out.put('\n');
     }
 }
@@ -117,6 +155,13 @@ void write_ply(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
     out.put(use_uint ? "\nproperty list uchar uint vertex_indices\n"
                      : "\nproperty list uchar int vertex_indices\n");
     for (const ScalarField& f : opt.face_fields) out.put("property float " + f.name + "\n");
+    const std::uint64_t segments = segment_count(opt.polylines);
+    if (segments > 0) {
+        out.put("element edge ");
+        out.put_number(segments);
+        out.put(use_uint ? "\nproperty uint vertex1\nproperty uint vertex2\n"
+                         : "\nproperty int vertex1\nproperty int vertex2\n");
+    }
     out.put("end_header\n");
 
     for (std::size_t i = 0; i < soup.points.size(); ++i) {
@@ -153,6 +198,18 @@ void write_ply(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
                 out.put_little_endian(static_cast<float>(f.values[i]));
         }
     }
+    for (const auto& p : opt.polylines)
+        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+            if (ascii) {
+                out.put_number(p[i]);
+                out.put(' ');
+                out.put_number(p[i + 1]);
+                out.put('\n');
+            } else {
+                out.put_little_endian(p[i]);  // same bits as int for < 2^31
+                out.put_little_endian(p[i + 1]);
+            }
+        }
 }
 
 void write_vtk_scalars(AtomicWriter& out, const std::vector<ScalarField>& fields) {
@@ -173,6 +230,21 @@ void write_vtk(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
     for (const Point3& p : soup.points) {
         put_point(out, p);
         out.put('\n');
+    }
+    if (!opt.polylines.empty()) {
+        out.put("LINES ");
+        out.put_number(std::uint64_t{opt.polylines.size()});
+        out.put(' ');
+        out.put_number(vtk_cell_array_size(opt.polylines));
+        out.put('\n');
+        for (const auto& p : opt.polylines) {
+            out.put_number(std::uint64_t{p.size()});
+            for (std::uint32_t v : p) {
+                out.put(' ');
+                out.put_number(v);
+            }
+            out.put('\n');
+        }
     }
     out.put("POLYGONS ");
     out.put_number(nf);
@@ -222,7 +294,9 @@ void write_vtp(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
         "  <PolyData>\n"
         "    <Piece NumberOfPoints=\"");
     out.put_number(nv);
-    out.put("\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"");
+    out.put("\" NumberOfVerts=\"0\" NumberOfLines=\"");
+    out.put_number(std::uint64_t{opt.polylines.size()});
+    out.put("\" NumberOfStrips=\"0\" NumberOfPolys=\"");
     out.put_number(nf);
     out.put("\">\n");
     write_vtp_arrays(out, "PointData", opt.vertex_fields);
@@ -238,7 +312,32 @@ void write_vtp(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
     }
     out.put(
         "        </DataArray>\n"
-        "      </Points>\n"
+        "      </Points>\n");
+    if (!opt.polylines.empty()) {
+        // VTK numbers the cells verts, lines, polys, strips: Lines come before Polys.
+        out.put(
+            "      <Lines>\n"
+            "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">");
+        std::uint64_t k = 0;
+        for (const auto& p : opt.polylines)
+            for (std::uint32_t v : p) {
+                out.put(k++ % 16 == 0 ? "\n          " : " ");
+                out.put_number(v);
+            }
+        out.put(
+            "\n        </DataArray>\n"
+            "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">");
+        std::uint64_t end = 0;
+        for (std::size_t i = 0; i < opt.polylines.size(); ++i) {
+            end += opt.polylines[i].size();
+            out.put(i % 16 == 0 ? "\n          " : " ");
+            out.put_number(end);
+        }
+        out.put(
+            "\n        </DataArray>\n"
+            "      </Lines>\n");
+    }
+    out.put(
         "      <Polys>\n"
         "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
     for (const auto& t : soup.triangles) {
@@ -294,6 +393,25 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
                 throw InvalidInput(std::string(fn) + ": triangle " + std::to_string(t) +
                                    " uses vertex index " + std::to_string(v) + " but there are " +
                                    std::to_string(nv) + " vertices");
+    // Polyline errors name the file too: "write_soup: out.vtp: polyline 2, index 5: ...".
+    const std::string where = std::string(fn) + ": " + ctx.name();
+    for (std::size_t l = 0; l < opt.polylines.size(); ++l) {
+        const auto& p = opt.polylines[l];
+        if (p.size() < 2)
+            throw InvalidInput(where + ": polyline " + std::to_string(l) + " has " +
+                               std::to_string(p.size()) + (p.size() == 1 ? " index" : " indices") +
+                               "; a polyline needs at least 2");
+        for (std::size_t i = 0; i < p.size(); ++i)
+            if (p[i] >= nv)
+                throw InvalidInput(where + ": polyline " + std::to_string(l) + ", index " +
+                                   std::to_string(i) + ": vertex " + std::to_string(p[i]) +
+                                   " is out of range (there are " + std::to_string(nv) +
+                                   " vertices)");
+    }
+    if (!opt.polylines.empty() && !opt.face_fields.empty() &&
+        (format == Format::Vtk || format == Format::Vtp))
+        throw InvalidInput(where + ": face fields cannot go with polylines in a " + ext +
+                           " file (VTK cell data would need a value per line as well)");
     const bool as_float = format == Format::Ply;
     validate_fields(opt.vertex_fields, nv, fn, "vertex", vertex_count, as_float);
     validate_fields(opt.face_fields, soup.triangles.size(), fn, "face", face_count, as_float);
@@ -301,10 +419,10 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
     AtomicWriter out(path);
     switch (format) {
         case Format::Off:
-            write_off(out, soup);
+            write_off(out, soup, opt.polylines);
             break;
         case Format::Obj:
-            write_obj(out, soup);
+            write_obj(out, soup, opt.polylines);
             break;
         case Format::Ply:
             write_ply(out, soup, opt);

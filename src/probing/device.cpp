@@ -37,8 +37,10 @@ void ProbingDevice::require_placed(const char* who) const {
                            ": the device has not been placed");
 }
 
-void ProbingDevice::check_segment(const char* who, const Point3& a, const Point3& b) const {
-    if (monitor_ != nullptr && !monitor_->segment_is_free(a, b))
+void ProbingDevice::check_segment(const char* who, const Point3& a, const Point3& b) {
+    if (monitor_ == nullptr) return;
+    ++counters_.monitored_segments;
+    if (!monitor_->segment_is_free(a, b))
         throw UnsafeMove(std::string("ProbingDevice::") + who + ": the segment " +
                          detail::format_point(a) + " - " + detail::format_point(b) +
                          " is not free");
@@ -90,12 +92,19 @@ void ProbingDevice::move_exterior(const Point3& q) {
                                " from its centre, radius " + std::to_string(R) + ")");
     const Vec3 up = normalized(position_ - c), uq = normalized(q - c);
     const double theta = std::atan2(norm(cross(up, uq)), dot(up, uq));
+    const double length = std::fabs(rp - R) + R * theta + std::fabs(rq - R);
+    if (monitor_ == nullptr && !recording_) {  // nothing to check or draw: only the counts
+        counters_.exterior_moves += 1;
+        counters_.exterior_length += length;
+        position_ = q;
+        return;
+    }
     // The great circle through up and uq (any one through up when they are antipodal).
     Vec3 w = uq - dot(up, uq) * up;
-    if (norm(w) < 1e-12) {
-        w = cross(up, std::fabs(up.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
-    }
-    w = normalized(w);
+    // Antipodal points: a great circle through the plane z = const of up when there is one
+    // (a planar run stays in its plane).
+    if (norm(w) < 1e-6) w = cross(up, std::fabs(up.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0});
+    w = normalized(w - dot(w, up) * up);  // orthogonal to up to rounding: arc points stay on ∂Ω
     const int n = std::max(1, static_cast<int>(std::ceil(theta / (std::numbers::pi / 360))));
     std::vector<Point3> path{position_, c + R * up};
     for (int i = 1; i < n; ++i) {
@@ -115,9 +124,26 @@ void ProbingDevice::move_exterior(const Point3& q) {
                                  detail::format_point(p) + ", which is not free or inside Ω");
     }
     counters_.exterior_moves += 1;
-    counters_.exterior_length += std::fabs(rp - R) + R * theta + std::fabs(rq - R);
+    counters_.exterior_length += length;
     position_ = q;
     for (std::size_t i = 1; i < path.size(); ++i) record(path[i], false);
+}
+
+void ProbingDevice::retrace(const Point3& q, std::size_t segments, double length) {
+    require_placed("retrace");
+    DYNMESH_CHECK(is_finite(q) && std::isfinite(length) && length >= 0,
+                  "ProbingDevice::retrace: the end point or the length is not finite");
+    counters_.segments += segments;
+    counters_.inside_length += length;
+    position_ = q;
+    if (recording_) record(q, true);
+}
+
+std::vector<std::vector<Point3>> ProbingDevice::take_recorded_paths() {
+    std::vector<std::vector<Point3>> out;
+    out.swap(paths_);
+    if (placed_ && recording_) paths_.push_back({position_});
+    return out;
 }
 
 std::optional<ProbeHit> ProbingDevice::cast(const Vec3& d, double t_max) {

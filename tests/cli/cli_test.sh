@@ -17,7 +17,7 @@ mesh=$data/meshes/blobby.off
 case $case_name in
 help)
     run 0 "$bin" --help
-    for c in flip worsen stats check sample experiment quadtree deform; do
+    for c in flip worsen stats check sample experiment quadtree deform probe; do
         run 0 "$bin" $c --help
         grep -q -- "--report" out.txt || fail "$c --help does not mention --report"
     done
@@ -28,7 +28,7 @@ exit_codes)
     # The contract of every subcommand: 0 ok, 1 checks failed, 2 usage, 3 bad input, 4 internal.
     run 0 "$bin" --help
     grep -q "Exit codes" out.txt || fail "--help does not list the exit codes"
-    for c in flip worsen stats check sample experiment qmesh deform; do
+    for c in flip worsen stats check sample experiment qmesh deform probe; do
         run 0 "$bin" $c --help
         grep -q "Exit codes: 0 success; 1" out.txt || fail "$c --help does not list the exit codes"
         run 2 "$bin" $c --no-such-flag
@@ -362,11 +362,66 @@ for k in ("probes", "probes_bootstrap", "voronoi_edges_travelled", "path_length"
 assert d["euler"] == 2 and d["check"]["problems"] == [], d
 assert d["hausdorff"] <= 1 - (1 - 0.08 ** 2) ** 0.5 + 1e-9, d["hausdorff"]
 assert d["vertices"] == int(open("s.off").read().split()[1]), d
+assert d["facets"] == int(open("s.off").read().split()[2]), d
 PY
     "$bin" check s.off --closed >/dev/null || fail "the probed sphere does not pass dynmesh check"
     run 0 "$bin" probe torus:1,0.35 --eps 0.03 -o t.vtp --check --report t.json --quiet
     [ "$(json_get t.json "['euler']")" = 0 ] || fail "the probed torus is not of genus 1"
     python3 -c "import json; d=json.load(open('t.json')); assert d['voronoi_edges_travelled'] > 0 and d['path_length'] > 0, d" || fail "no path on the torus"
+    # --delta: eps = eps_S sqrt(delta / (9 R_Omega)), R_Omega = 1.5
+    run 0 "$bin" probe sphere:1 --delta 0.01 --omega 0,0,0,1.5 -o d.ply --report d.json --quiet
+    python3 -c "import json, math; d=json.load(open('d.json')); assert abs(d['eps'] - math.sqrt(0.01 / 13.5)) < 1e-12, d['eps']" || fail "eps from delta"
+    # The omniscient baseline: no motion, the same kind of mesh.
+    run 0 "$bin" probe torus:1,0.35 --eps 0.03 --mode omniscient -o o.off --check --report o.json --quiet
+    python3 -c "
+import json; o=json.load(open('o.json')); t=json.load(open('t.json'))
+assert o['path_length'] == 0 and o['voronoi_edges_travelled'] == 0 and o['euler'] == 0, o
+assert abs(o['vertices'] / t['vertices'] - 1) < 0.1, (o['vertices'], t['vertices'])" || fail "omniscient baseline"
+    ;;
+probe_files)
+    # A real mesh, its sample, the ParaView series with the device's path, the PNG; two runs
+    # give the same bytes.
+    m=$data/meshes/blobby.off
+    run 0 "$bin" probe "$m" --eps-s 0.15 --eps 0.012 -o b.obj --sample b.xyz --out series --every 500 \
+        --png b.png --check --report b.json --quiet
+    [ "$(head -c 8 b.png | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] || fail "b.png is not a PNG"
+    [ -s series/probe.pvd ] && [ -s series/path.vtp ] || fail "no series"
+    n=$(grep -c "<DataSet" series/probe.pvd)
+    [ "$n" -ge 3 ] || fail "only $n snapshots"
+    [ "$(ls series/probe_*.vtp | wc -l)" -eq "$n" ] || fail "pvd and snapshot files disagree"
+    grep -q 'NumberOfLines="[1-9]' series/path.vtp || fail "the path has no polyline"
+    python3 - <<'PY' || fail "series/sample do not match the report"
+import json, re
+d = json.load(open("b.json"))
+assert d["check"]["problems"] == [] and d["euler"] == 2, d
+pts = [l for l in open("b.xyz") if l.strip()]
+assert len(pts) >= d["vertices"], (len(pts), d["vertices"])
+last = sorted(re.findall(r'file="(probe_\d+\.vtp)"', open("series/probe.pvd").read()))[-1]
+txt = open("series/" + last).read()
+polys = int(re.search(r'NumberOfPolys="(\d+)"', txt).group(1))
+assert polys == d["facets"], (polys, d["facets"])
+PY
+    run 0 "$bin" probe "$m" --eps-s 0.15 --eps 0.012 -o b2.obj --sample b2.xyz --quiet
+    cmp -s b.obj b2.obj || fail "two runs wrote different meshes"
+    cmp -s b.xyz b2.xyz || fail "two runs wrote different samples"
+    # 2D: closed polylines in every format; the star with a wide Omega uses detection paths.
+    for ext in off obj ply vtk vtp; do
+        run 0 "$bin" probe star2:1 --dim 2 --eps 0.02 --omega 0,0,0,3 -o star.$ext --check --report star.json --quiet
+    done
+    python3 - <<'PY' || fail "2D polyline"
+import json
+d = json.load(open("star.json"))
+assert d["euler"] == 0 and d["components"] == 1 and d["facets"] == d["vertices"], d
+assert d["check"]["problems"] == [] and d["detection_edges"] > 0, d
+lines = [l.split()[1:] for l in open("star.obj") if l.startswith("l ")]
+idx = [int(v) for l in lines for v in l if v != "\\"]
+assert idx[0] == idx[-1] and len(idx) == d["vertices"] + 1 and len(set(idx)) == d["vertices"], len(idx)
+PY
+    grep -q "^element edge $(json_get star.json "['facets']")" star.ply || fail "star.ply: no edge element"
+    run 0 "$bin" probe circle2:1 --dim 2 --eps 0.05 -o c.off --png c.png --report c.json --quiet
+    [ "$(head -c 4 c.png | od -An -c | tr -d ' ')" = '211PNG' ] || fail "c.png is not a PNG"
+    ;;
+probe_bad)
     expect() {  # expect CODE PATTERN ARGS...
         local code=$1 pat=$2; shift 2
         run "$code" "$bin" probe "$@" -o bad.off --quiet
@@ -375,16 +430,32 @@ PY
         [ -e bad.off ] && fail "an output was written for: $*"
         true
     }
-    expect 3 "not below 0.091" sphere:1 --eps 0.1
-    expect 3 "not inside the object" sphere:1 --eps 0.05 --interior 0,0,1.2
-    expect 3 "outside Omega" sphere:1 --eps 0.05 --interior 5,0,0
-    expect 3 "margin of Omega" sphere:1 --eps 0.05 --omega 0,0,0,1.0000001
+    expect 2 "not below 0.091" sphere:1 --eps 0.1
+    expect 2 "gives eps" sphere:1 --delta 1
+    expect 2 "not inside the object" sphere:1 --eps 0.05 --interior 0,0,1.2
+    expect 2 "not inside the object" sphere:1 --eps 0.05 --interior 5,0,0
+    expect 2 "Omega must contain it" sphere:1 --eps 0.05 --omega 0,0,0,1.0000001
+    expect 2 "Omega must contain it" sphere:1 --eps 0.05 --omega 3,0,0,2.5
     expect 2 "exactly one of --eps and --delta" sphere:1
+    expect 2 "exactly one of --eps and --delta" sphere:1 --eps 0.05 --delta 0.01
     expect 2 "--interior" sphere:1 --eps 0.05 --interior 0,nan,0
+    expect 2 "--interior" sphere:1 --eps 0.05 --interior 0,0
+    expect 2 "--omega" sphere:1 --eps 0.05 --omega 0,0,0,inf
     expect 2 "eps" sphere:1 --eps nan
+    expect 2 "eps-s" sphere:1 --eps 0.05 --eps-s -1
+    expect 2 "planar curve" circle2:1 --eps 0.05
+    expect 2 "--dim 2" sphere:1 --eps 0.05 --dim 2
+    expect 2 "unknown object" cube:1 --eps 0.05
+    expect 2 "--png" sphere:1 --eps 0.05 --png x.jpg
     printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > open.off
     expect 3 "open.off" open.off --eps-s 0.1 --eps 0.005
+    expect 3 "cube-shuffled.off" "$data/meshes/defective/cube-shuffled.off" --eps-s 0.1 --eps 0.005
+    expect 3 "missing.off" missing.off --eps-s 0.1 --eps 0.005
     expect 2 "--eps-s is required" "$data/meshes/blobby.off" --eps 0.005
+    printf '0 0 0 1\n0.5 0 0 nan\n' > nan_balls.txt
+    expect 3 "nan_balls.txt:2" balls:nan_balls.txt --eps 0.01 --eps-s 0.1
+    printf '0 0 0 1\n1.5 0 0 1\n' > overlapping.txt
+    expect 3 "overlapping.txt:2" balls:overlapping.txt --eps 0.01 --eps-s 0.1
     ;;
 quadtree_ops)
     pts=$data/planar/dots.node

@@ -55,8 +55,7 @@ ProbingOptions sphere_options(double eps) {
     ProbingOptions o;
     o.eps = eps;
     o.eps_S = 1;
-    o.omega_center = {0, 0, 0};
-    o.omega_radius = 1.5;
+    o.omega = {{0, 0, 0}, 1.5};
     o.interior_points = {{0, 0, 0}};
     return o;
 }
@@ -140,7 +139,7 @@ TEST(ProbeSurface, RefusesBadOptions) {
     o.interior_points = {{0, 0, 1.2}};  // inside Omega, outside the object: the probe misses
     EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
     o = sphere_options(0.05);
-    o.omega_radius = 1.0 + 1e-9;  // S touches the boundary of Omega
+    o.omega.radius = 1.0 + 1e-9;  // S touches the boundary of Omega
     EXPECT_THROW((void)probe_surface(oracle, o), InvalidInput);
 }
 

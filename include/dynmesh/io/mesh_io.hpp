@@ -1,6 +1,7 @@
 #pragma once
 /// \file Reading and writing triangle meshes: OFF, OBJ, PLY and STL in; OFF, OBJ, PLY, legacy
-/// VTK and VTK XML PolyData out, plus ParaView time series (.pvd).
+/// VTK and VTK XML PolyData out, optionally with polylines (WriteOptions::polylines), plus
+/// ParaView time series (.pvd).
 ///
 /// Error discipline (every function here)
 /// - Every failure throws `IoError` with a one-line message naming the file and where the
@@ -18,6 +19,7 @@
 ///   renamed over the target only when complete. On failure the temporary file is removed
 ///   and the target is left as it was.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -82,8 +84,27 @@ struct WriteOptions {
     /// cannot carry them.
     std::vector<ScalarField> vertex_fields;
     /// Per-face fields: .vtk/.vtp CellData, .ply extra `float` face properties. Each must
-    /// have n_faces() values. Ignored by .off and .obj.
+    /// have n_faces() values (triangles only, never polylines). Ignored by .off and .obj.
+    /// Refused together with polylines in .vtk/.vtp (see below).
     std::vector<ScalarField> face_fields;
+    /// Polylines written after the triangles, each a list of at least 2 indices into the
+    /// written vertices (the soup's points; for write_mesh the 0..n_vertices()-1 numbering
+    /// the file gets). A closed polygon repeats its first index at the end. Empty (the
+    /// default): the output is byte for byte the triangle-only one. Per format:
+    /// - `.vtp`: a `<Lines>` section (connectivity, offsets) and NumberOfLines;
+    /// - `.vtk`: `LINES n size`, one `k i0 ... ik-1` row per polyline;
+    /// - `.obj`: `l i0 i1 ...` statements (1-based), continued on the next line with a
+    ///   trailing backslash every 1024 indices (VTK's OBJ reader refuses lines over 256 KiB);
+    /// - `.ply`: an `edge` element with `int vertex1, vertex2` (`uint` when the faces use
+    ///   `uint`), one edge per segment, so a polyline of k indices becomes k - 1 edges;
+    /// - `.off`: each segment as a face of 2 vertices (`2 i j`), counted in the header's
+    ///   face count, after the triangles.
+    /// read_soup() skips `l` statements and `edge` elements but refuses 2-vertex OFF faces,
+    /// so only the triangles of .obj and .ply files read back. In VTK, cells are numbered
+    /// verts, lines, polys, strips: the lines come before the triangles, so CellData would
+    /// need a value per line too; face_fields together with polylines are therefore refused
+    /// for .vtk and .vtp (InvalidInput). .ply keeps its face fields on the face element.
+    std::vector<std::vector<std::uint32_t>> polylines;
 };
 
 /// Writes the live elements of `mesh`, choosing the format by extension (case-insensitive):
@@ -92,12 +113,14 @@ struct WriteOptions {
 /// (the numbering garbage_collection() would give); faces follow in index order as
 /// `mesh.to_soup()` lists them. Coordinates are written in shortest round-trip form (text)
 /// or as doubles (binary PLY), so reading the file back reproduces them bit for bit.
-/// The write is atomic (see the file comment). A mesh without faces is written, but
-/// read_soup() refuses such a file.
+/// The write is atomic (see the file comment). A mesh without faces is written (with
+/// `options.polylines`, a file of polylines only), but read_soup() refuses such a file.
 /// \throw InvalidInput when a field has the wrong size, a bad or duplicate name, or a
-///        non-finite value (or, for PLY, a value that does not fit in a float), or when a
-///        position is not finite. IoError for an unknown extension or any file-system
-///        failure (missing directory, permissions, full disk).
+///        non-finite value (or, for PLY, a value that does not fit in a float), when a
+///        position is not finite, when a polyline has fewer than 2 indices or an index out of
+///        range, or when face fields and polylines go to one .vtk or .vtp file. IoError for
+///        an unknown extension or any file-system failure (missing directory, permissions,
+///        full disk).
 void write_mesh(const SurfaceMesh& mesh, const std::filesystem::path& path,
                 const WriteOptions& options = {});
 

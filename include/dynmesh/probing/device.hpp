@@ -21,9 +21,10 @@
 
 namespace dynmesh {
 
-/// A move that the safety monitor found unsafe; the message names the segment's endpoints.
-struct UnsafeMove : Error {
-    using Error::Error;
+/// A move that the safety monitor found unsafe (a bug: the device only travels certified
+/// segments); the message names the segment's endpoints.
+struct UnsafeMove : InternalError {
+    using InternalError::InternalError;
 };
 
 struct DeviceCounters {
@@ -32,6 +33,7 @@ struct DeviceCounters {
     std::size_t exterior_moves = 0;  ///< move_exterior() calls
     double inside_length = 0;        ///< length of move_to segments inside Ω
     double exterior_length = 0;      ///< length travelled outside the open ball Ω
+    std::size_t monitored_segments = 0;  ///< segments the safety monitor verified
 };
 
 class ProbingDevice {
@@ -54,6 +56,12 @@ public:
     /// when the current position or q is at distance < R_Ω − margin from c_Ω; UnsafeMove when
     /// the monitor finds a piece of the path not free.
     void move_exterior(const Point3& q);
+    /// Follows again a path of `segments` segments inside Ω that the device has travelled
+    /// before (each was certified free then), ending at q, of total length `length`: counted
+    /// like move_to, in O(1), and not checked or recorded again (a monitored or recording run
+    /// replays such paths with move_to instead).
+    /// \throw InvalidInput when not placed or when q or length is not finite.
+    void retrace(const Point3& q, std::size_t segments, double length);
     /// The first crossing of the ray from the current position (Oracle::cast); counted.
     /// \throw InvalidInput when not placed, or as Oracle::cast.
     [[nodiscard]] std::optional<ProbeHit> cast(const Vec3& d, double t_max);
@@ -68,13 +76,16 @@ public:
     /// Recording of the path as polylines (one per place() or break in the path; exterior
     /// arcs sampled every 2°), for drawing. Off by default.
     void set_recording(bool on) { recording_ = on; }
+    [[nodiscard]] bool recording() const { return recording_; }
     [[nodiscard]] const std::vector<std::vector<Point3>>& recorded_paths() const {
         return paths_;
     }
+    /// The recorded polylines so far, moved out; recording goes on from the current position.
+    [[nodiscard]] std::vector<std::vector<Point3>> take_recorded_paths();
 
 private:
     void require_placed(const char* who) const;
-    void check_segment(const char* who, const Point3& a, const Point3& b) const;
+    void check_segment(const char* who, const Point3& a, const Point3& b);
     void record(const Point3& p, bool new_polyline);
 
     const Oracle& oracle_;
