@@ -168,7 +168,6 @@ def draw_3d(fig, mesh, path_points, segs, caption_parts):
     mid, half = (lo + hi) / 2, max(float((hi - lo).max()) / 2, 1e-300)
     colors = shaded_colors(mesh.points, faces)
     edges = len(faces) < EDGES_BELOW
-    fade = path_alpha(len(coords))
     elev = 20
     for i, azim in enumerate((30, 210)):
         # mplot3d sorts whole collections, not segments against triangles: the path is split
@@ -180,7 +179,10 @@ def draw_3d(fig, mesh, path_points, segs, caption_parts):
         ax.add_collection3d(Poly3DCollection(
             mesh.points[faces], facecolors=colors, edgecolors="#30303080" if edges else "none",
             linewidths=0.1 if edges else 0, zorder=2))
-        for part, color, width, alpha in ((outside, OUTSIDE, 0.4, fade), (inside, INSIDE, 0.3, fade)):
+        # Exterior travel (mostly arcs on the boundary of Omega) is context: drawn faint, so that
+        # the path among the Voronoi vertices near the object stands out.
+        for part, color, width, alpha in ((outside, OUTSIDE, 0.2, 0.25 * path_alpha(len(outside))),
+                                          (inside, INSIDE, 0.3, path_alpha(len(inside)))):
             if not len(part):
                 continue
             near = (part.mean(axis=1) - center) @ eye > 0
@@ -195,8 +197,8 @@ def draw_3d(fig, mesh, path_points, segs, caption_parts):
         ax.view_init(elev=elev, azim=azim)
         ax.set_title(f"azimuth {azim}°", fontsize=9)
         ax.tick_params(labelsize=6)
-    caption_parts.append(f"path inside the mesh's bounding ball in red, outside it (exterior arcs) "
-                         f"lighter: {len(inside):,} / {len(outside):,} drawn segments")
+    caption_parts.append(f"path inside the mesh's bounding ball in red, outside it (exterior travel) "
+                         f"faint: {len(inside):,} / {len(outside):,} drawn segments")
 
 
 def draw_2d(fig, mesh, path_points, segs, caption_parts):

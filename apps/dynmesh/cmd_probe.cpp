@@ -229,8 +229,9 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     if (!png_path.empty()) {
         progress.stage("drawing " + a.png);
         char title[256];
-        std::snprintf(title, sizeof title, "%s, eps %.4g: %zu vertices, %zu probes, path %.4g", a.object.c_str(),
-                      r.report.eps, r.report.vertices, r.report.probes, r.report.path_length);
+        const std::string name = input ? input->filename().string() : a.object;
+        std::snprintf(title, sizeof title, "%s, eps %.4g: %zu probes, path %.4g inside Omega", name.c_str(),
+                      r.report.eps, r.report.probes, r.report.path_length);
         draw_png(r, png_path, outputs.scratch(a.png), a.png, title);
     }
     const ProbingReport& p = r.report;

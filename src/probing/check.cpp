@@ -80,6 +80,13 @@ std::vector<std::string> check_polygons(const std::vector<Point3>& pts,
 
 }  // namespace
 
+double surface_hausdorff(const TriangleSoup& mesh, const GroundTruth& truth, const std::vector<Point3>& surface_samples) {
+    const SurfaceMesh m = SurfaceMesh::from_soup(mesh);
+    double to_s = 0;
+    for (const Point3& p : mesh_sample_points(m, 2)) to_s = std::max(to_s, truth.distance(p));
+    return std::max(to_s, max_distance_to_mesh(m, surface_samples));
+}
+
 double polyline_hausdorff(const std::vector<Point3>& points, const std::vector<std::vector<std::uint32_t>>& polygons,
                           const GroundTruth& truth, const std::vector<Point3>& curve_samples) {
     double worst = 0, longest = 0;
@@ -108,6 +115,10 @@ double polyline_hausdorff(const std::vector<Point3>& points, const std::vector<s
         worst = std::max(worst, best);
     }
     return worst;
+}
+
+double default_check_spacing(const GroundTruth& truth, double eps, int dim) {
+    return std::max(eps / 4, dim == 3 ? std::sqrt(truth.area() / 2e5) : truth.area() / 2e5);
 }
 
 ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& truth, const ProbingOptions& options,
@@ -151,9 +162,7 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
              std::to_string(eps));
 
     // Samples of S: 2ε-sample and Hausdorff.
-    double spacing = check.spacing > 0 ? check.spacing : eps / 4;
-    const double extent = dim == 3 ? std::sqrt(truth.area() / 2e5) : truth.area() / 2e5;
-    spacing = std::max(spacing, extent);
+    const double spacing = check.spacing > 0 ? check.spacing : default_check_spacing(truth, eps, dim);
     const std::vector<Point3> s_samples = truth.sample_surface(spacing);
     if (!r.sample.empty()) {
         PointGrid grid(eps);
@@ -166,10 +175,7 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
                  " from every sample (2 eps = " + std::to_string(2 * eps) + ")");
     }
     if (dim == 3 && !r.mesh.triangles.empty() && out.closed_manifold) {
-        const SurfaceMesh m = SurfaceMesh::from_soup(r.mesh);
-        double to_s = 0;
-        for (const Point3& p : mesh_sample_points(m, 2)) to_s = std::max(to_s, truth.distance(p));
-        out.hausdorff = std::max(to_s, max_distance_to_mesh(m, s_samples));
+        out.hausdorff = surface_hausdorff(r.mesh, truth, s_samples);
     } else if (dim == 2) {
         out.hausdorff = polyline_hausdorff(r.mesh.points, r.polygons, truth, s_samples);
     }

@@ -126,7 +126,9 @@ void ProbingDevice::move_exterior(const Point3& q) {
     counters_.exterior_moves += 1;
     counters_.exterior_length += length;
     position_ = q;
-    for (std::size_t i = 1; i < path.size(); ++i) record(path[i], false);
+    // The drawing needs less: every 20th arc point (10°) and the ends.
+    for (std::size_t i = 1; i < path.size(); ++i)
+        if (i % 20 == 0 || i + 2 >= path.size()) record(path[i], false);
 }
 
 void ProbingDevice::retrace(const Point3& q, std::size_t segments, double length) {

@@ -476,7 +476,10 @@ private:
                                 : (std::fabs(d.x) < 0.9 ? cross(d, Vec3{1, 0, 0}) : cross(d, Vec3{0, 1, 0}));
             e1 = normalized(e1);
             const Vec3 e2 = cross(d, e1);
-            double theta = eps_ / (8 * std::max(a->t, tau_));
+            // b and c 60° apart around a: at normal incidence abc is equilateral with side
+            // θ·t = 0.4ε (circumradius 0.23ε ≤ ε/4), as large as the test allows, so that the
+            // triangles the refinement builds next to it keep reasonable angles.
+            double theta = 0.4 * eps_ / std::max(a->t, tau_);
             for (int k = 0; k < 30; ++k, theta /= 2) {
                 Seed seed;
                 seed.attempt = attempt;
@@ -485,7 +488,7 @@ private:
                 if (!b) continue;
                 seed.points.push_back(b->x);
                 if (kDim == 3) {
-                    const auto c = cast_from(p, normalized(d + theta * e2), 2 * R_);
+                    const auto c = cast_from(p, normalized(d + theta * (0.5 * e1 + 0.8660254037844386 * e2)), 2 * R_);
                     if (!c) continue;
                     seed.points.push_back(c->x);
                 }
@@ -574,6 +577,7 @@ private:
         }
         if (tri_.dimension() != kDim)
             throw InternalError("probe: the bootstrap samples do not span the space");
+        rep_.bootstrap_samples = sample_.size();
         build_state();
     }
 

@@ -64,7 +64,34 @@ void expect_guarantees(const ProbeRun& r) {
     EXPECT_LE(p.probes, 2 * p.voronoi_edges_created + p.probes_bootstrap);
     // Detection walks each activated node's edge forward and back.
     EXPECT_EQ(p.detection_edges, 2 * p.activations);
-    if (r.options.mode == ProbingMode::Device) EXPECT_GT(p.segments_checked, 0u);
+    if (r.options.mode == ProbingMode::Device) {
+        EXPECT_GT(p.segments_checked, 0u);
+    }
+    // Angles: a refined sample is more than eps from every other (its ball was empty and
+    // larger than eps) and every facet's circumradius is at most its ball's radius <= eps, so
+    // a triangle whose shortest edge is not between two bootstrap samples has no angle below
+    // asin(1/2) = 30 degrees.
+    if (p.reinitialisations == 0) {
+        const auto& m = r.result.mesh;
+        const auto& E = r.result.sample;
+        const auto bootstrap = [&](const Point3& q) {
+            return std::find(E.begin(), E.begin() + std::ptrdiff_t(p.bootstrap_samples), q) !=
+                   E.begin() + std::ptrdiff_t(p.bootstrap_samples);
+        };
+        double worst = 180;
+        for (const auto& t : m.triangles) {
+            const Point3 v[3] = {m.points[t[0]], m.points[t[1]], m.points[t[2]]};
+            int shortest = 0;
+            for (int k = 1; k < 3; ++k)
+                if (distance(v[k], v[(k + 1) % 3]) < distance(v[shortest], v[(shortest + 1) % 3])) shortest = k;
+            if (bootstrap(v[shortest]) && bootstrap(v[(shortest + 1) % 3])) continue;
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 e1 = v[(k + 1) % 3] - v[k], e2 = v[(k + 2) % 3] - v[k];
+                worst = std::min(worst, std::atan2(norm(cross(e1, e2)), dot(e1, e2)) * 180 / 3.14159265358979323846);
+            }
+        }
+        EXPECT_GE(worst, 30 - 1e-6);
+    }
 }
 
 /// Spec §7 test 5 with §10.5: the torus exercises the paths (detection, positioning, retained

@@ -8,6 +8,15 @@
 
 #include <gtest/gtest.h>
 
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <array>
+#include <map>
+#include <set>
+
 #include "dynmesh/error.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
@@ -110,6 +119,73 @@ TEST(ProbeSurface, SphereIsAClosedManifoldWithSmallBalls) {
     // Costs: every probe is of a Voronoi edge end, at most two per edge created.
     EXPECT_GT(r.report.cells_created, r.mesh.triangles.size());
     EXPECT_LE(r.report.probes - r.report.probes_bootstrap, 2 * 4 * r.report.cells_created);
+}
+
+/// Spec §7 test 4: with eps < 0.05 eps_S the output is the whole restricted Delaunay
+/// triangulation Del_|S(E). Computed here independently: CGAL's Delaunay triangulation of the
+/// sample, every Voronoi edge (segment between circumcentres, or ray of a hull facet) tested
+/// against the unit sphere exactly as a quadratic, and the facets whose edge crosses it
+/// compared with the output's.
+TEST(ProbeSurface, VisibleEqualsFullRestrictedDelaunayBelowTheThreshold) {
+    const UnitSphereOracle oracle;
+    const ProbingResult r = probe_surface(oracle, sphere_options(0.045));
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::size_t, K>;
+    using Cb = CGAL::Delaunay_triangulation_cell_base_3<K>;
+    using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+    using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+    std::vector<std::pair<K::Point_3, std::size_t>> pts;
+    for (std::size_t i = 0; i < r.sample.size(); ++i)
+        pts.push_back({{r.sample[i].x, r.sample[i].y, r.sample[i].z}, i});
+    const DT dt(pts.begin(), pts.end());
+    // Does the segment a + t (b - a), t in [0, t_end], meet the unit sphere?
+    const auto crosses = [](const K::Point_3& a, const K::Vector_3& d, double t_end) {
+        const double A = d.squared_length(), B = 2 * (a - CGAL::ORIGIN) * d, C = (a - CGAL::ORIGIN).squared_length() - 1;
+        const double disc = B * B - 4 * A * C;
+        if (disc < 0) return false;
+        const double t1 = (-B - std::sqrt(disc)) / (2 * A), t2 = (-B + std::sqrt(disc)) / (2 * A);
+        return (t1 >= 0 && t1 <= t_end) || (t2 >= 0 && t2 <= t_end);
+    };
+    std::set<std::array<std::size_t, 3>> restricted;
+    for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
+        const auto c = f->first;
+        const int i = f->second;
+        const auto n = c->neighbor(i);
+        bool hit = false;
+        if (!dt.is_infinite(c) && !dt.is_infinite(n)) {
+            const K::Point_3 a = dt.dual(c), b = dt.dual(n);
+            hit = crosses(a, b - a, 1);
+        } else {
+            const auto fin = dt.is_infinite(c) ? n : c;
+            const int j = dt.is_infinite(c) ? n->index(c) : i;
+            const K::Point_3 a = dt.dual(fin);
+            const K::Point_3& p = fin->vertex((j + 1) & 3)->point();
+            const K::Point_3& q = fin->vertex((j + 2) & 3)->point();
+            const K::Point_3& s = fin->vertex((j + 3) & 3)->point();
+            K::Vector_3 normal = CGAL::cross_product(q - p, s - p);
+            if (normal * (fin->vertex(j)->point() - p) > 0) normal = -normal;  // away from the cell
+            hit = crosses(a, normal, 1e300);
+        }
+        if (!hit) continue;
+        std::array<std::size_t, 3> t{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
+                                     c->vertex((i + 3) & 3)->info()};
+        std::sort(t.begin(), t.end());
+        restricted.insert(t);
+    }
+    std::map<std::array<double, 3>, std::size_t> index;
+    for (std::size_t i = 0; i < r.sample.size(); ++i) index[{r.sample[i].x, r.sample[i].y, r.sample[i].z}] = i;
+    std::set<std::array<std::size_t, 3>> visible;
+    for (const auto& tri : r.mesh.triangles) {
+        std::array<std::size_t, 3> t{};
+        for (int k = 0; k < 3; ++k) {
+            const Point3& p = r.mesh.points[tri[k]];
+            t[k] = index.at({p.x, p.y, p.z});
+        }
+        std::sort(t.begin(), t.end());
+        visible.insert(t);
+    }
+    EXPECT_GT(visible.size(), 1000u);
+    EXPECT_EQ(visible, restricted);
 }
 
 TEST(ProbeSurface, RunsAreDeterministic) {

@@ -38,11 +38,22 @@ struct ProbingCheckReport {
     [[nodiscard]] bool ok() const { return problems.empty(); }
 };
 
+/// The default spacing of ProbingCheckOptions: ε/4, coarsened so that S gets at most about
+/// 2e5 samples (area / spacing² in 3D, length / spacing in 2D).
+[[nodiscard]] double default_check_spacing(const GroundTruth& truth, double eps, int dim);
+
 /// Verifies `result` (of probe_surface when dim is 3, probe_curve when dim is 2, run with
 /// `options`) against `truth`.
 [[nodiscard]] ProbingCheckReport check_probing(const ProbingResult& result, const GroundTruth& truth,
                                                const ProbingOptions& options, int dim,
                                                const ProbingCheckOptions& check = {});
+
+/// The two-sided sampled Hausdorff distance between a triangle mesh and the object's surface:
+/// the mesh sampled at vertices, edge midpoints and barycentres against GroundTruth::distance,
+/// and `surface_samples` against the mesh (AABB tree). \throw InvalidInput for a mesh that is
+/// not an oriented 2-manifold or has no face.
+[[nodiscard]] double surface_hausdorff(const TriangleSoup& mesh, const GroundTruth& truth,
+                                       const std::vector<Point3>& surface_samples);
 
 /// The two-sided sampled Hausdorff distance between a closed polyline (polygons, indices into
 /// points; z = 0) and a curve known by its distance function and samples.

@@ -74,7 +74,7 @@ public:
     [[nodiscard]] bool monitored() const { return monitor_ != nullptr; }
 
     /// Recording of the path as polylines (one per place() or break in the path; exterior
-    /// arcs sampled every 2°), for drawing. Off by default.
+    /// arcs sampled every 10°), for drawing. Off by default.
     void set_recording(bool on) { recording_ = on; }
     [[nodiscard]] bool recording() const { return recording_; }
     [[nodiscard]] const std::vector<std::vector<Point3>>& recorded_paths() const {

@@ -101,6 +101,7 @@ struct ProbingReport {
     std::size_t activations = 0;      ///< in-Ω nodes made active by detect_access
     std::size_t detect_access_calls = 0;
     std::size_t queue_pushes = 0;
+    std::size_t bootstrap_samples = 0;  ///< the first samples, from the bootstrap (spec §4.3)
     std::size_t insertions = 0;       ///< samples inserted by refinement
     std::size_t stale_pops = 0;
     std::size_t nonempty_pops = 0;  ///< popped balls that hold a sample (skipped; spec §8.2)
