@@ -138,6 +138,12 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
             out.euler = mc.euler;
             out.components = mc.components;
             if (!mc.ok()) fail("the output is not a closed oriented 2-manifold: " + mc.summary());
+            // Outward: the enclosed volume (sum of signed tetrahedra from any origin) is positive.
+            double volume = 0;
+            for (const auto& t : r.mesh.triangles)
+                volume += dot(r.mesh.points[t[0]], cross(r.mesh.points[t[1]], r.mesh.points[t[2]])) / 6;
+            if (out.closed_manifold && !(volume > 0))
+                fail("the output is oriented inward (enclosed volume " + std::to_string(volume) + ")");
         } catch (const Error& e) {
             fail(std::string("the output is not an oriented 2-manifold: ") + e.what());
         }
@@ -148,6 +154,15 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
         out.euler = static_cast<long long>(r.mesh.points.size()) - static_cast<long long>(edges);
         out.components = r.polygons.size();
         for (const auto& p : problems) fail("the output polygons: " + p);
+        // Counter-clockwise around O: the signed areas add up to a positive total.
+        double area = 0;
+        for (const auto& loop : r.polygons)
+            for (std::size_t k = 0; k + 1 < loop.size(); ++k) {
+                const Point3 &p = r.mesh.points[loop[k]], &q = r.mesh.points[loop[k + 1]];
+                area += (p.x * q.y - q.x * p.y) / 2;
+            }
+        if (out.closed_manifold && !(area > 0))
+            fail("the output polygons run clockwise (signed area " + std::to_string(area) + ")");
     }
     if (out.euler != truth.euler_characteristic())
         fail("Euler characteristic " + std::to_string(out.euler) + ", the object's is " +

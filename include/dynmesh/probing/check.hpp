@@ -4,7 +4,8 @@
 ///
 /// Checked: the run's own invariants (ProbingResult::problems); the output is a closed
 /// oriented 2-manifold (2D: disjoint simple closed polygons, every vertex with one edge in and
-/// one out) with the object's Euler characteristic and number of components; every ball of
+/// one out), oriented outward (positive enclosed volume; 2D: counter-clockwise, positive
+/// area), with the object's Euler characteristic and number of components; every ball of
 /// the output is at most ε; the sample is a 2ε-sample of S (every ground-truth sample of S has
 /// a sample point within 2ε); the two-sided Hausdorff distance between the output and S is
 /// within the paper's bound 4.5·diam(S)·ε²/ε_S² (Theorem 2.1 with ε_S ≤ rch(S); for a
