@@ -13,6 +13,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/format.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/io/points_io.hpp"
 #include "dynmesh/probing/check.hpp"
@@ -34,6 +35,7 @@ struct ProbeArgs {
     std::string mode = "device";
     std::string out_dir, png, sample;
     std::size_t every = 200;
+    std::size_t max_points = 2'000'000;
     bool check = false;
     bool strict = false;
     CommonOptions common;
@@ -49,10 +51,9 @@ std::vector<double> parse_tuple(const std::string& text, std::size_t n, const st
     return *v;
 }
 
+/// "x,y,z" as the options take it, each number in its shortest round-trip form.
 std::string format3(const Point3& p) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%.6g,%.6g,%.6g", p.x, p.y, p.z);
-    return buf;
+    return format_number(p.x) + "," + format_number(p.y) + "," + format_number(p.z);
 }
 
 /// Is OBJECT a file (a mesh or a balls list) rather than an analytic spec?
@@ -121,7 +122,6 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
         if (ext != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
         if (const auto why = plotting_unavailable("plot_probe.py")) throw UsageError("--png: " + *why);
     }
-    if (a.every == 0) throw UsageError("--every must be at least 1");
     std::vector<Point3> interior;
     for (const std::string& s : a.interior) {
         const auto v = parse_tuple(s, 3, "--interior");
@@ -134,6 +134,9 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
         omega = Ball{{v[0], v[1], v[2]}, v[3]};
     }
     const std::optional<fs::path> input = object_file(a.object);
+    // An analytic object reads no file: a bad spec ("sphere:-1") is a usage error.
+    std::optional<ProbeSetup> setup_holder;
+    if (!input) setup_holder = make_probe_object(a.object, {.strict = a.strict});
     RunOutputs outputs(a.common, input ? std::vector<fs::path>{*input} : std::vector<fs::path>{});
     const fs::path mesh_path = outputs.file(a.output, "-o");
     const fs::path sample_path = a.sample.empty() ? fs::path{} : outputs.file(a.sample, "--sample");
@@ -143,15 +146,29 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
 
     Progress progress("probe", a.common.quiet);
     progress.stage("reading the object");
-    const ProbeSetup setup = make_probe_object(a.object, {.strict = a.strict});
+    if (!setup_holder) setup_holder = make_probe_object(a.object, {.strict = a.strict});
+    const ProbeSetup& setup = *setup_holder;
     const ProbeObject& object = *setup.object;
 
     // Options, checked against what the object is (usage errors, exit 2).
     ProbingOptions o;
     o.omega = omega ? *omega : setup.omega;
     o.interior_points = interior.empty() ? setup.interior_points : interior;
+    o.max_points = a.max_points;
+    const std::string omega_arg = "--omega " + a.omega;
+    if (a.dim == 2 && o.omega.center.z != 0) throw UsageError(omega_arg + ": a 2D run needs its centre at z = 0");
+    // The object's own ball (1.1 times its bounding box's): Omega far larger than the object
+    // would put clip points so far away that the probes lose their precision.
+    if (omega && (o.omega.radius > 1e4 * setup.omega.radius ||
+                  distance(o.omega.center, setup.omega.center) > 1e4 * setup.omega.radius))
+        throw UsageError(omega_arg + ": Omega is more than 1e4 times larger than the object (radius " +
+                         format_number(setup.omega.radius) + " around " + format_point(setup.omega.center) +
+                         "): the probes would lose their precision");
     if (a.eps_S) {
         o.eps_S = *a.eps_S;
+        if (object.reach() > 0 && o.eps_S > object.reach() * (1 + 1e-12))
+            throw UsageError("--eps-s " + format_number(o.eps_S) + " exceeds the reach of " + a.object + ", " +
+                             format_number(object.reach()) + ": it must be a lower bound of the reach");
     } else if (object.reach() > 0) {
         o.eps_S = object.reach();  // the analytic shapes know their reach
     } else {
@@ -160,24 +177,33 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     if (a.eps) o.eps = *a.eps;
     if (a.delta) o.delta = *a.delta;
     const double eps = o.eps > 0 ? o.eps : probing_eps_from_delta(*o.delta, o.eps_S, o.omega.radius);
+    const std::string eps_arg =
+        a.eps ? "--eps " + format_number(eps) : "--delta " + format_number(*a.delta) + " gives eps = " + format_number(eps) + ", which";
     if (!(eps < 0.091 * o.eps_S))
-        throw UsageError((a.eps ? "--eps " + std::to_string(eps) : "--delta " + std::to_string(*a.delta) +
-                                                                     " gives eps = " + std::to_string(eps)) +
-                         ", which is not below 0.091 * eps_S = " + std::to_string(0.091 * o.eps_S) +
+        throw UsageError(eps_arg + " is not below 0.091 * eps_S = " + format_number(0.091 * o.eps_S) +
                          ": the output would carry no guarantee");
+    // The output size the paper predicts, N ~ 0.7 area / eps^2 (2D: length / eps), against
+    // the cap on samples: refused up front rather than after a long run.
+    const double expected = a.dim == 3 ? 0.7 * object.area() / (eps * eps) : object.area() / eps;
+    if (!(expected <= static_cast<double>(o.max_points)))
+        throw UsageError(eps_arg + " would need about " + format_number(std::round(expected)) +
+                         " samples, more than --max-points " + std::to_string(o.max_points));
     for (const Point3& p : o.interior_points) {
         if (a.dim == 2 && p.z != 0) throw UsageError("--interior " + format3(p) + ": a 2D run needs z = 0");
         if (object.is_free(p))
             throw UsageError("--interior " + format3(p) + ": the point is not inside the object");
     }
     {
+        // Every point of S is within `spacing` of a sample: the object reaches at most
+        // max + spacing from the centre.
+        const double spacing = o.omega.radius / 64;
         double reach = 0;
-        for (const Point3& q : object.sample_surface(o.omega.radius / 64))
-            reach = std::max(reach, distance(q, o.omega.center));
+        for (const Point3& q : object.sample_surface(spacing)) reach = std::max(reach, distance(q, o.omega.center));
+        reach += spacing;
         if (!(reach < o.omega.radius * (1 - 1e-6)))
-            throw UsageError("--omega " + format3(o.omega.center) + "," + std::to_string(o.omega.radius) +
-                             ": the object reaches " + std::to_string(reach) +
-                             " from the centre: Omega must contain it with a margin");
+            throw UsageError("--omega " + format3(o.omega.center) + "," + format_number(o.omega.radius) +
+                             ": the object may reach " + format_number(reach) +
+                             " from the centre (up to 1/64 of the radius): Omega must contain it with a margin");
     }
     o.mode = a.mode == "omniscient" ? ProbingMode::Omniscient : ProbingMode::Device;
     if (a.check || o.mode == ProbingMode::Omniscient) o.ground_truth = &object;
@@ -273,6 +299,7 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
                           {"hausdorff_bound", chk.hausdorff_bound},
                           {"sample_gap", chk.sample_gap},
                           {"seconds", p.seconds}};
+    if (!chk.closed_manifold) rep["hausdorff"] = nullptr;  // measured only on a closed manifold
     if (o.delta) rep["delta"] = *o.delta;
     for (const Point3& q : o.interior_points) rep["interior_points"].push_back({q.x, q.y, q.z});
     if (a.check) rep["check"] = {{"problems", problems}, {"segments_checked", p.segments_checked}};
@@ -280,10 +307,16 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     outputs.commit();
     if (!a.common.quiet) {
         std::cout << "probe: " << p.vertices << " vertices, " << p.facets << (a.dim == 3 ? " facets" : " edges")
-                  << ", Euler " << chk.euler << ", Hausdorff " << chk.hausdorff << " (bound " << chk.hausdorff_bound
-                  << "); " << p.probes << " probes, " << p.voronoi_edges_travelled << " Voronoi edges travelled, path "
-                  << p.path_length << ", " << p.seconds << " s\n  wrote " << a.output << "\n";
+                  << ", Euler " << chk.euler << ", Hausdorff "
+                  << (chk.closed_manifold ? format_number(chk.hausdorff) : std::string("n/a")) << " (bound "
+                  << format_number(chk.hausdorff_bound) << "); " << p.probes << " probes, "
+                  << p.voronoi_edges_travelled << " Voronoi edges travelled, path " << p.path_length << ", "
+                  << p.seconds << " s\n  wrote " << a.output << "\n";
         for (const std::string& s : problems) std::cout << "  check: " << s << "\n";
+        if (!a.check && chk.closed_manifold && chk.hausdorff > chk.hausdorff_bound)
+            std::cerr << "dynmesh probe: warning: the Hausdorff distance exceeds the bound: eps_S is not a lower "
+                         "bound of the reach, or a component cannot be reached from outside Omega (run with "
+                         "--check)\n";
     }
     if (!problems.empty())
         throw CheckFailed(std::to_string(problems.size()) + " problem(s); first: " + problems.front());
@@ -331,7 +364,12 @@ void register_probe(CLI::App& root, int& result) {
     sub->add_option("--out", args->out_dir,
                     "Directory for a ParaView series of the refinement (probe.pvd, probe_NNNNNNN.vtp every "
                     "--every insertions with the device's path since the previous one) and path.vtp");
-    sub->add_option("--every", args->every, "Insertions between two --out snapshots (default 200)");
+    sub->add_option("--every", args->every, "Insertions between two --out snapshots (default 200)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1'000'000'000}));
+    sub->add_option("--max-points", args->max_points,
+                    "Refuse a run that needs more samples than this (default 2,000,000; the expected number "
+                    "is about 0.7 area / eps^2)")
+        ->check(CLI::Range(std::size_t{4}, std::size_t{1'000'000'000}));
     sub->add_option("--png", args->png, "Picture of the final mesh with the device's path");
     sub->add_option("--sample", args->sample, "The sample (x y z lines)");
     sub->add_flag("--strict", args->strict,

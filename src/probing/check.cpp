@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -28,9 +29,18 @@ double orient2(const Point3& a, const Point3& b, const Point3& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-bool segments_cross(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+/// Do the closed segments ab and cd meet (crossing, touching or overlapping)?
+bool segments_meet(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
     const double o1 = orient2(a, b, c), o2 = orient2(a, b, d), o3 = orient2(c, d, a), o4 = orient2(c, d, b);
-    return ((o1 > 0) != (o2 > 0)) && ((o3 > 0) != (o4 > 0)) && o1 != 0 && o2 != 0 && o3 != 0 && o4 != 0;
+    const auto sign = [](double v) { return (v > 0) - (v < 0); };
+    // q on the segment pq's line, within its bounding box.
+    const auto within = [](const Point3& p, const Point3& q, const Point3& r) {
+        return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
+               r.y <= std::max(p.y, q.y);
+    };
+    if (sign(o1) * sign(o2) < 0 && sign(o3) * sign(o4) < 0) return true;
+    return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) || (o3 == 0 && within(c, d, a)) ||
+           (o4 == 0 && within(c, d, b));
 }
 
 /// 2D topology: every vertex in exactly one closed loop, one edge in and one out; no two
@@ -71,10 +81,10 @@ std::vector<std::string> check_polygons(const std::vector<Point3>& pts,
             if (j <= i) return;
             const auto &s = segs[i], &t = segs[j];
             if (s[0] == t[0] || s[0] == t[1] || s[1] == t[0] || s[1] == t[1]) return;
-            if (segments_cross(pts[s[0]], pts[s[1]], pts[t[0]], pts[t[1]])) ++crossings;
+            if (segments_meet(pts[s[0]], pts[s[1]], pts[t[0]], pts[t[1]])) ++crossings;
         });
     }
-    if (crossings > 0) problems.push_back(std::to_string(crossings) + " pairs of polygon edges cross");
+    if (crossings > 0) problems.push_back(std::to_string(crossings) + " pairs of polygon edges without a common vertex meet");
     return problems;
 }
 
@@ -170,11 +180,28 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
     if (static_cast<int>(out.components) != truth.components())
         fail(std::to_string(out.components) + " components, the object has " + std::to_string(truth.components()));
 
-    // Ball sizes.
+    // Ball sizes: the run's own measure, and independently the facets themselves: a facet's
+    // circumcircle is a section of its ball, so its circumradius (2D: half its length) is at
+    // most eps too.
     out.max_ball_radius = r.report.max_ball_radius;
     if (out.max_ball_radius > eps)
         fail("a restricted ball of radius " + std::to_string(out.max_ball_radius) + " exceeds eps = " +
              std::to_string(eps));
+    double circumradius = 0;
+    if (dim == 3) {
+        for (const auto& t : r.mesh.triangles) {
+            const Point3 &a = r.mesh.points[t[0]], &b = r.mesh.points[t[1]], &c = r.mesh.points[t[2]];
+            const double area2 = norm(cross(b - a, c - a));
+            circumradius = std::max(circumradius, area2 > 0 ? distance(a, b) * distance(b, c) * distance(c, a) / (2 * area2)
+                                                            : std::numeric_limits<double>::infinity());
+        }
+    } else {
+        for (const auto& loop : r.polygons)
+            for (std::size_t k = 0; k + 1 < loop.size(); ++k)
+                circumradius = std::max(circumradius, distance(r.mesh.points[loop[k]], r.mesh.points[loop[k + 1]]) / 2);
+    }
+    if (circumradius > eps * (1 + 1e-9))
+        fail("an output facet has circumradius " + std::to_string(circumradius) + " > eps = " + std::to_string(eps));
 
     // Samples of S: 2ε-sample and Hausdorff.
     const double spacing = check.spacing > 0 ? check.spacing : default_check_spacing(truth, eps, dim);

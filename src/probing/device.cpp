@@ -42,7 +42,7 @@ void ProbingDevice::check_segment(const char* who, const Point3& a, const Point3
     ++counters_.monitored_segments;
     if (!monitor_->segment_is_free(a, b))
         throw UnsafeMove(std::string("ProbingDevice::") + who + ": the segment " +
-                         detail::format_point(a) + " - " + detail::format_point(b) +
+                         format_point(a) + " - " + format_point(b) +
                          " is not free");
 }
 
@@ -56,11 +56,11 @@ void ProbingDevice::place(const Point3& q) {
     DYNMESH_CHECK(is_finite(q), "ProbingDevice::place: the point is not finite");
     const double r = distance(q, omega_.center);
     if (r < omega_.radius - margin_)
-        throw InvalidInput("ProbingDevice::place: " + detail::format_point(q) +
+        throw InvalidInput("ProbingDevice::place: " + format_point(q) +
                            " lies inside Ω (distance " + std::to_string(r) +
                            " from its centre, radius " + std::to_string(omega_.radius) + ")");
     if (monitor_ != nullptr && !monitor_->is_free(q))
-        throw UnsafeMove("ProbingDevice::place: " + detail::format_point(q) + " is not free");
+        throw UnsafeMove("ProbingDevice::place: " + format_point(q) + " is not free");
     position_ = q;
     placed_ = true;
     record(q, true);
@@ -87,7 +87,7 @@ void ProbingDevice::move_exterior(const Point3& q) {
     const double rp = distance(position_, c), rq = distance(q, c);
     for (const auto& [p, r] : {std::pair{position_, rp}, std::pair{q, rq}})
         if (r < R - margin_)
-            throw InvalidInput("ProbingDevice::move_exterior: " + detail::format_point(p) +
+            throw InvalidInput("ProbingDevice::move_exterior: " + format_point(p) +
                                " lies inside Ω (distance " + std::to_string(r) +
                                " from its centre, radius " + std::to_string(R) + ")");
     const Vec3 up = normalized(position_ - c), uq = normalized(q - c);
@@ -119,9 +119,9 @@ void ProbingDevice::move_exterior(const Point3& q) {
         for (const Point3& p : path)
             if (distance(p, c) < R - margin_ || !monitor_->is_free(p))
                 throw UnsafeMove("ProbingDevice::move_exterior: the path from " +
-                                 detail::format_point(position_) + " to " +
-                                 detail::format_point(q) + " passes through " +
-                                 detail::format_point(p) + ", which is not free or inside Ω");
+                                 format_point(position_) + " to " +
+                                 format_point(q) + " passes through " +
+                                 format_point(p) + ", which is not free or inside Ω");
     }
     counters_.exterior_moves += 1;
     counters_.exterior_length += length;

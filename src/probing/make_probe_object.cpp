@@ -1,10 +1,12 @@
 /// make_probe_object: spec strings to probing objects, with A1's interior points and A2's Ω.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <string_view>
 
 #include "../io/io_common.hpp"
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/format.hpp"
 #include "dynmesh/io/input_file.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/probing/oracles.hpp"
@@ -16,6 +18,23 @@ namespace {
 
 Ball omega_of(const Bbox3& b) {
     return {0.5 * (b.min + b.max), 1.1 * 0.5 * b.diagonal()};
+}
+
+/// The sizes a probing run handles: an object between 1e-50 and 1e50 across, at most 1e6 of
+/// its sizes away from the origin (farther, double coordinates lose the precision the
+/// probes need). \throw InvalidInput "<what>: ..." otherwise.
+void check_extent(const Bbox3& box, const std::string& what) {
+    // The longest side, not the diagonal: a diagonal of 1e300-sized sides overflows.
+    const double size = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+    double far = 0;
+    for (const Point3& p : {box.min, box.max}) far = std::max({far, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    if (!(size >= 1e-50 && size <= 1e50))
+        throw InvalidInput(what + ": the object is " + format_number(size) +
+                           " across; probing handles objects from 1e-50 to 1e50 across");
+    if (far > 1e6 * size)
+        throw InvalidInput(what + ": the object is " + format_number(size) + " across but " + format_number(far) +
+                           " from the origin: move it near the origin (coordinates that far lose the "
+                           "precision the probes need)");
 }
 
 std::vector<Ball> read_balls(const std::string& path) {
@@ -74,6 +93,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
             throw InternalError("make_probe_object: unexpected surface type for " + spec);
         out.interior_points = {surface->interior_point()};
         out.omega = omega_of(surface->bbox());
+        check_extent(surface->bbox(), spec);
     } else if (has_prefix("balls:")) {
         auto balls = read_balls(spec.substr(6));
         Bbox3 box;
@@ -82,6 +102,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
             box.extend(b.center - Vec3{b.radius, b.radius, b.radius});
             box.extend(b.center + Vec3{b.radius, b.radius, b.radius});
         }
+        check_extent(box, spec.substr(6));
         out.object = std::make_unique<BallsOracle>(std::move(balls), options);
         out.omega = omega_of(box);
     } else if (has_prefix("circle2:") || has_prefix("star2:")) {
@@ -91,6 +112,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
         if (!detail::parse_double(arg, r) || !std::isfinite(r) || !(r > 0))
             throw InvalidInput("make_probe_object: '" + spec + "': the radius must be a positive "
                                "number");
+        check_extent({{-r, -r, 0}, {r, r, 0}}, spec);
         std::unique_ptr<PlanarStarOracle> o;
         if (circle)
             o = std::make_unique<CircleOracle2>(Point2{0, 0}, r, options);
@@ -115,6 +137,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
         } catch (const InvalidInput& e) {
             throw InvalidInput(spec + ": " + e.what());
         }
+        check_extent(mesh->bbox(), spec);
         out.interior_points = mesh->interior_points();
         out.omega = omega_of(mesh->bbox());
         out.object = std::move(mesh);

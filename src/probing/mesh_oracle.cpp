@@ -13,6 +13,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/probing/oracles.hpp"
 #include "probe_common.hpp"
 
@@ -45,6 +46,11 @@ void check_soup(const TriangleSoup& soup) {
     if (boundary > 0)
         throw InvalidInput("MeshOracle: the mesh is not closed (" + std::to_string(boundary) +
                            " boundary edges); a probing object needs a closed surface");
+    const auto pairs = self_intersections(m, 1);
+    if (!pairs.empty())
+        throw InvalidInput("MeshOracle: the mesh intersects itself (faces " + std::to_string(pairs[0].first.idx()) +
+                           " and " + std::to_string(pairs[0].second.idx()) +
+                           "); a probing object needs the boundary of a solid");
 }
 
 }  // namespace
@@ -182,7 +188,14 @@ std::vector<Point3> MeshOracle::sample_surface(double spacing) const {
                   "GroundTruth::sample_surface: the spacing must be a positive number");
     DYNMESH_CHECK(area() / (spacing * spacing) <= 1e8,
                   "GroundTruth::sample_surface: spacing too small (more than 1e8 points)");
-    std::vector<Point3> out = impl_->soup.points;
+    // The vertices the triangles use (an unused vertex is not a point of S), then a grid on
+    // every triangle.
+    std::vector<bool> used(impl_->soup.points.size(), false);
+    for (const auto& t : impl_->soup.triangles)
+        for (auto v : t) used[v] = true;
+    std::vector<Point3> out;
+    for (std::size_t v = 0; v < used.size(); ++v)
+        if (used[v]) out.push_back(impl_->soup.points[v]);
     for (const auto& t : impl_->soup.triangles) {
         const Point3 a = impl_->soup.points[t[0]], b = impl_->soup.points[t[1]],
                      c = impl_->soup.points[t[2]];
@@ -250,33 +263,49 @@ int MeshOracle::euler_characteristic() const {
 }
 
 std::vector<Point3> MeshOracle::interior_points() const {
+    // Per component, from its 16 largest faces: a ray from the face's centroid into O to the
+    // first wall it meets; the midpoint of that chord, the one farthest from S.
     std::size_t n = 0;
     const auto label = triangle_components(impl_->soup, &n);
-    std::vector<Point3> out(n);
-    std::vector<bool> found(n, false);
     const auto& pts = impl_->soup.points;
-    for (double frac : {1e-3, 1e-5}) {
-        for (std::size_t i = 0; i < label.size(); ++i) {
-            if (found[label[i]]) continue;
-            const auto& t = impl_->soup.triangles[i];
-            const Vec3 c = (pts[t[0]] + pts[t[1]] + pts[t[2]]) / 3.0;
-            const Vec3 nrm = cross(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]);
-            const double size = std::sqrt(0.5 * norm(nrm));
-            if (!(size > 0)) continue;
-            for (double sign : {-1.0, 1.0}) {
-                const Point3 q = c + sign * frac * size * normalized(nrm);
-                if (impl_->inside(q) && distance(q) > 10 * tolerance()) {
-                    out[label[i]] = q;
-                    found[label[i]] = true;
-                    break;
+    const auto& tris = impl_->soup.triangles;
+    std::vector<double> area2(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+        area2[i] = norm(cross(pts[tris[i][1]] - pts[tris[i][0]], pts[tris[i][2]] - pts[tris[i][0]]));
+    std::vector<std::vector<std::size_t>> faces(n);
+    for (std::size_t i = 0; i < tris.size(); ++i) faces[label[i]].push_back(i);
+    std::vector<Point3> out(n);
+    const double eta = 1e3 * tolerance();
+    for (std::size_t k = 0; k < n; ++k) {
+        auto& fs = faces[k];
+        const std::size_t m = std::min<std::size_t>(16, fs.size());
+        std::partial_sort(fs.begin(), fs.begin() + std::ptrdiff_t(m), fs.end(),
+                          [&](std::size_t a, std::size_t b) { return area2[a] > area2[b] || (area2[a] == area2[b] && a < b); });
+        double best = -1;
+        for (std::size_t f = 0; f < m; ++f) {
+            const auto& t = tris[fs[f]];
+            const Point3 c = (pts[t[0]] + pts[t[1]] + pts[t[2]]) / 3.0;
+            const Vec3 nrm = normalized(cross(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]));
+            for (const Vec3 d : {-nrm, nrm}) {
+                if (!impl_->inside(c + eta * d)) continue;
+                const K::Ray_3 ray(to_cgal(c + eta * d), K::Vector_3(d.x, d.y, d.z));
+                const auto wall = impl_->tree.first_intersection(ray);
+                if (!wall) continue;
+                const auto* y = boost::get<K::Point_3>(&wall->first);
+                if (y == nullptr) continue;
+                const Point3 q = 0.5 * (c + from_cgal(*y));
+                const double clearance = distance(q);
+                if (impl_->inside(q) && clearance > 10 * tolerance() && clearance > best) {
+                    best = clearance;
+                    out[k] = q;
                 }
+                break;
             }
         }
+        if (best < 0)
+            throw InvalidInput("MeshOracle::interior_points: no interior point found for mesh component " +
+                               std::to_string(k));
     }
-    for (std::size_t k = 0; k < n; ++k)
-        if (!found[k])
-            throw InvalidInput("MeshOracle::interior_points: no interior point found for mesh "
-                               "component " + std::to_string(k));
     return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-/// \file Private helpers of the probing oracles: number formatting for messages, the convex
-/// quadric root rule shared by spheres, ellipsoids and balls, and the sphere-tracing march
-/// shared by the torus and the genus-2 surface.
+/// \file Private helpers of the probing oracles: the convex quadric root rule shared by
+/// spheres, ellipsoids and balls, and the sphere-tracing march shared by the torus and the
+/// genus-2 surface.
 
 #include <algorithm>
 #include <cmath>
@@ -10,12 +10,12 @@
 #include <string>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/format.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/probing/oracle.hpp"
 
 namespace dynmesh::detail {
 
-std::string format_point(const Point3& p);
 
 /// |cos(ray, normal)| below this is a near-tangent (grazing) contact (spec §8.1).
 inline constexpr double kGrazingCos = 1e-6;

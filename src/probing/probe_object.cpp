@@ -10,12 +10,6 @@ namespace dynmesh {
 
 namespace detail {
 
-std::string format_point(const Point3& p) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%.17g, %.17g, %.17g)", p.x, p.y, p.z);
-    return buf;
-}
-
 std::optional<QuadricRoot> quadric_entry(double A, double B, double C, bool near, double cos0) {
     if (near) {
         // On S: entering (or tangent) at the start is a hit at t = 0; leaving a convex set
@@ -37,15 +31,15 @@ ProbeObject::ProbeObject(double scale, OracleOptions options)
 
 std::optional<ProbeHit> ProbeObject::cast(const Point3& s, const Vec3& d, double t_max) const {
     if (!is_finite(s))
-        throw InvalidInput("Oracle::cast: the start " + detail::format_point(s) + " is not finite");
+        throw InvalidInput("Oracle::cast: the start " + format_point(s) + " is not finite");
     if (!is_finite(d) || std::fabs(norm(d) - 1) > 1e-9)
-        throw InvalidInput("Oracle::cast: the direction " + detail::format_point(d) +
+        throw InvalidInput("Oracle::cast: the direction " + format_point(d) +
                            " is not a unit vector");
     if (std::isnan(t_max) || t_max < 0)
         throw InvalidInput("Oracle::cast: t_max must be >= 0, not " + std::to_string(t_max));
     const double sd = signed_distance(s);
     if (sd < -tau_)
-        throw InvalidInput("Oracle::cast: the start " + detail::format_point(s) +
+        throw InvalidInput("Oracle::cast: the start " + format_point(s) +
                            " lies inside the object (signed distance " + std::to_string(sd) +
                            ", tolerance " + std::to_string(tau_) + ")");
     return cast_checked(s, d, t_max, options_.strict);

@@ -238,7 +238,8 @@ private:
         Vec3 D{};
         double lo = 0, hi = 0;
         double clo = 0, chi = -1;
-        [[nodiscard]] bool meets_omega() const { return clo < chi; }
+        bool touches = false;  ///< the edge meets Ω (possibly in one point)
+        [[nodiscard]] bool meets_omega() const { return touches; }
         [[nodiscard]] Point3 start() const { return O + clo * D; }
         [[nodiscard]] Point3 end() const { return O + chi * D; }
     };
@@ -273,9 +274,21 @@ private:
             const double entry = m - std::sqrt(h2), exit = m + std::sqrt(h2);
             L.clo = nu.in_omega || L.lo >= exit ? L.lo : entry;
             L.chi = nw.in_omega || L.hi <= entry ? L.hi : exit;
-        } else if (nu.in_omega || nw.in_omega) {
-            L.clo = L.lo;
-            L.chi = L.hi;
+        } else if (nu.in_omega || nw.in_omega) {  // rounding: the line grazes ∂Ω at the anchor
+            L.clo = L.chi = 0;
+        }
+        // An edge with an end inside Ω meets Ω even when its rounded length is zero or slightly
+        // negative (cospherical samples): a zero-length edge, never "outside Omega". A clearly
+        // negative length would mean positions and the exact direction disagree: the device
+        // must not walk such an edge.
+        if (nu.in_omega || nw.in_omega) {
+            if (L.chi < L.clo - 1e-9 * R_)
+                throw InternalError("probe: the Voronoi edge from " + format_point(nu.pos) + " to " +
+                                    format_point(nw.pos) + " runs against its exact direction " + format_point(L.D));
+            L.touches = true;
+            L.chi = std::max(L.chi, L.clo);
+        } else {
+            L.touches = L.clo < L.chi;
         }
         return L;
     }
@@ -346,6 +359,19 @@ private:
             r.s = L.end();
             r.d = -L.D;
             hit = cast_from(r.s, r.d, len);
+        } else if (!o_.ground_truth->segment_is_free(L.start(), L.end())) {
+            // Both ends inside O, yet the edge leaves it (it joins two components, say): cast
+            // from a free point of the edge, the first of 64 evenly spaced ones.
+            for (int k = 1; k < 64 && !hit; ++k) {
+                const Point3 q = L.start() + (len * k / 64) * L.D;
+                if (!o_.ground_truth->is_free(q)) continue;
+                r.s = q;
+                hit = cast_from(q, L.D, len * (64 - k) / 64);
+                if (!hit) {
+                    r.d = -L.D;
+                    hit = cast_from(q, r.d, len * k / 64);
+                }
+            }
         }
         if (!hit) return;
         r.state = Record::Hit;
@@ -554,10 +580,12 @@ private:
                 throw InvalidInput("probe: no well-shaped bootstrap triangle near the interior point " +
                                    format_point(o) + " from 64 directions");
             // A seed whose small ball holds points of another seed repeats that component.
+            // (closed ball, with room for rounding: a seed found again along the same ray has its
+            // points on the other seed's small sphere)
             bool repeat = false;
             for (const Seed& s : seeds)
                 for (const Point3& q : s.points)
-                    if (distance(q, seed->x_near->x) <= seed->small_radius) repeat = true;
+                    if (distance(q, seed->x_near->x) <= seed->small_radius * (1 + 1e-6)) repeat = true;
             if (!repeat) seeds.push_back(std::move(*seed));
         }
         rep_.probes_bootstrap = probes_so_far();
@@ -581,7 +609,11 @@ private:
         build_state();
     }
 
+    /// A bootstrap sample; one within 1e-9 R_Ω of an earlier one is the same point (spec §8.2's
+    /// guard) and is not inserted again.
     void add_sample(const Point3& q) {
+        for (const Point3& p : sample_)
+            if (distance(p, q) <= 1e-9 * R_) return;
         tri_.insert(q, static_cast<std::uint32_t>(sample_.size()));
         sample_.push_back(q);
     }
@@ -743,10 +775,17 @@ private:
                     if (n_in_omega) candidates_.emplace_back(k_out, j);
                     break;
                 case Record::Hit: {
-                    const double rad = ball_radius(k_out, j, r.x), dx = distance(r.x, x);
-                    if (dx > rad * (1 + 1e-9)) break;  // same ball, same stamp: still on the edge
+                    // The hit lies on the dual line up to rounding: its distances to the facet's
+                    // vertices span [near, far]; x strictly outside or inside that band decides.
+                    double near = std::numeric_limits<double>::infinity(), far = 0;
+                    for (const Point3& p : Tri::facet_points(k_out, j)) {
+                        near = std::min(near, distance(p, r.x));
+                        far = std::max(far, distance(p, r.x));
+                    }
+                    const double dx = distance(r.x, x);
+                    if (dx > far * (1 + 1e-9)) break;  // same ball, same stamp: still on the edge
                     r.stamp = next_stamp();
-                    if (dx < rad * (1 - 1e-9)) {
+                    if (dx < near * (1 - 1e-9)) {
                         // The new edge ends before the hit: inside the free part [s, x).
                         r.state = Record::Miss;
                         if (n_in_omega) candidates_.emplace_back(k_out, j);
@@ -783,6 +822,8 @@ private:
             const Record& r2 = Tri::info(w).rec[Tri::index(w, c)];
             const Record* r = r1.state == Record::Hit ? &r1 : r2.state == Record::Hit ? &r2 : nullptr;
             if (r == nullptr) return;
+            if (final_run && r2.state == Record::Hit)  // both ends hit: both balls count
+                rep_.max_ball_radius = std::max(rep_.max_ball_radius, ball_radius(w, Tri::index(w, c), r2.x));
             // The outward normal opposes the probe, which enters O at the hit. In 3D it is
             // facet_normal; in 2D (counter-clockwise loops) the right-hand normal, −facet_normal.
             auto t = Tri::facet_samples(c, i);
@@ -807,7 +848,7 @@ private:
         if constexpr (kDim == 3) {
             for (const auto& t : simplices) soup.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
         } else {
-            chain_polygons(simplices, index, soup.points.size(), polygons);
+            chain_polygons(simplices, index, soup.points.size(), polygons, final_run);
         }
     }
     /// 2D: directed edges a → b (O on the left) chained into closed loops, each starting at
@@ -815,7 +856,7 @@ private:
     /// in and one out ends its chain (reported by the checks).
     void chain_polygons(const std::vector<std::array<std::uint32_t, kDim>>& edges,
                         const std::vector<std::uint32_t>& index, std::size_t n,
-                        std::vector<std::vector<std::uint32_t>>& polygons) {
+                        std::vector<std::vector<std::uint32_t>>& polygons, bool final_run) {
         std::vector<std::uint32_t> next(n, kNoNode);
         std::vector<int> in(n, 0), out(n, 0);
         for (const auto& e : edges) {
@@ -838,7 +879,7 @@ private:
             if (u == v) loop.push_back(v);  // closed
             polygons.push_back(std::move(loop));
         }
-        for (std::uint32_t v = 0; v < n; ++v)
+        for (std::uint32_t v = 0; final_run && v < n; ++v)  // snapshots show unfinished loops
             if ((in[v] != 1 || out[v] != 1) && problems_.size() < 20)
                 problems_.push_back("the output vertex " + std::to_string(v) + " has " + std::to_string(in[v]) +
                                     " incoming and " + std::to_string(out[v]) + " outgoing edges");
@@ -861,10 +902,11 @@ private:
                 if (!n.active || n.root()) continue;
                 // P1 by induction on the depth: the chain's previous node is active, one step
                 // nearer ∂Ω, and its end is where this node's certified segment starts.
-                const Node& p = nodes_[n.prev];
-                const bool ok = n.prev != kNoNode && p.active &&
-                                (p.root() ? n.depth == 1 && n.top == id
-                                          : n.depth == p.depth + 1 && n.top == p.top && n.entry == p.pos);
+                const bool ok = n.prev != kNoNode && n.prev < nodes_.size() && nodes_[n.prev].active &&
+                                (nodes_[n.prev].root()
+                                     ? n.depth == 1 && n.top == id
+                                     : n.depth == nodes_[n.prev].depth + 1 && n.top == nodes_[n.prev].top &&
+                                           n.entry == nodes_[n.prev].pos);
                 if (!ok) fail("P1: node " + std::to_string(id) + " has no active chain to outside Omega");
                 if (o_.ground_truth != nullptr && !n.verified) {  // frozen: checked once
                     if (!o_.ground_truth->segment_is_free(n.entry, n.pos))
@@ -884,6 +926,8 @@ private:
                 const Record& r = Tri::info(c).rec[i];
                 if (!omniscient_ && u.active && r.state == Record::Unprobed)
                     fail("an edge of active node " + std::to_string(id) + " has no record");
+                if (r.state == Record::OutsideOmega && (u.in_omega || w.in_omega))
+                    fail("an edge of node " + std::to_string(id) + " with an end inside Omega is recorded outside it");
                 // P2 (local): an edge known to be free joins nodes of the same status.
                 if (!omniscient_ && r.state == Record::Miss && u.active && !w.active)
                     fail("P2: a free edge joins active node " + std::to_string(id) + " and inactive node " +

@@ -4,12 +4,16 @@
 /// one dimension down. Points are Point3 with z = 0. A face is a Voronoi vertex; edge (f, i),
 /// opposite f's vertex i, is dual to the Voronoi edge from f toward f->neighbor(i).
 
+#include <CGAL/Cartesian_converter.h>
 #include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
 #include <vector>
@@ -49,9 +53,23 @@ public:
     [[nodiscard]] static Cell neighbor(Cell c, int i) { return c->neighbor(i); }
     [[nodiscard]] static int index(Cell c, Cell n) { return c->index(n); }
     [[nodiscard]] static Info& info(Cell c) { return c->info(); }
+    /// As Triangulation3::circumcenter: exact when the double result is off by more than
+    /// about 1e-12 of the radius or the face is nearly flat.
     [[nodiscard]] static Point3 circumcenter(Cell c) {
-        return to_p(CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(),
-                                       c->vertex(2)->point()));
+        const KPoint& a = c->vertex(0)->point();
+        const KPoint& b = c->vertex(1)->point();
+        const KPoint& d = c->vertex(2)->point();
+        const KPoint x = CGAL::circumcenter(a, b, d);
+        const double ra = CGAL::squared_distance(x, a), rb = CGAL::squared_distance(x, b),
+                     rd = CGAL::squared_distance(x, d);
+        const double lo = std::min({ra, rb, rd}), hi = std::max({ra, rb, rd});
+        const double edge2 = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(a, d),
+                                       CGAL::squared_distance(b, d)});
+        if (std::isfinite(hi) && hi - lo <= 2e-12 * hi && hi <= 1e6 * edge2) return to_p(x);
+        using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+        const CGAL::Cartesian_converter<K, EK> to_exact;
+        const EK::Point_2 ex = CGAL::circumcenter(to_exact(a), to_exact(b), to_exact(d));
+        return {CGAL::to_double(ex.x()), CGAL::to_double(ex.y()), 0};
     }
     [[nodiscard]] static std::array<Point3, 2> facet_points(Cell c, int i) {
         return {to_p(c->vertex(DT::ccw(i))->point()), to_p(c->vertex(DT::cw(i))->point())};

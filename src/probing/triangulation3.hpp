@@ -8,11 +8,14 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
 #include <vector>
@@ -36,6 +39,7 @@ private:
     using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
     using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
     using KPoint = K::Point_3;
+    using EK = CGAL::Exact_predicates_exact_constructions_kernel;
     static KPoint to_k(const Point3& p) { return {p.x, p.y, p.z}; }
     static Point3 to_p(const KPoint& p) { return {p.x(), p.y(), p.z()}; }
 
@@ -53,12 +57,29 @@ public:
     [[nodiscard]] static Cell neighbor(Cell c, int i) { return c->neighbor(i); }
     [[nodiscard]] static int index(Cell c, Cell n) { return c->index(n); }
     [[nodiscard]] static Info& info(Cell c) { return c->info(); }
-    /// The circumcentre of a finite cell, computed in double and recomputed exactly when the
-    /// double result falls outside the circumsphere (CGAL's robust filtered construction).
+    /// The circumcentre of a finite cell, accurate to about 1e-12 of its radius: computed in
+    /// double, and again exactly (EPECK, then rounded) when the double result's distances to
+    /// the four vertices differ by more than that, or when the cell is nearly flat (radius over
+    /// 1e3 times its longest edge), so that a node lies on the dual lines of its four facets,
+    /// on the right side of them, and a certified segment is the edge it stands for.
     [[nodiscard]] static Point3 circumcenter(Cell c) {
-        static const CGAL::Robust_circumcenter_filtered_traits_3<K> traits;
-        return to_p(traits.construct_circumcenter_3_object()(c->vertex(0)->point(), c->vertex(1)->point(),
-                                                             c->vertex(2)->point(), c->vertex(3)->point()));
+        const KPoint& a = c->vertex(0)->point();
+        const KPoint& b = c->vertex(1)->point();
+        const KPoint& d = c->vertex(2)->point();
+        const KPoint& e = c->vertex(3)->point();
+        const KPoint x = CGAL::circumcenter(a, b, d, e);
+        const double ra = CGAL::squared_distance(x, a), rb = CGAL::squared_distance(x, b),
+                     rd = CGAL::squared_distance(x, d), re = CGAL::squared_distance(x, e);
+        const double lo = std::min({ra, rb, rd, re}), hi = std::max({ra, rb, rd, re});
+        // A nearly flat cell has its centre far along the normal, on a side the double
+        // construction may get wrong while its distances still agree: exact as well when the
+        // radius exceeds 1e3 times the longest edge.
+        const double edge2 = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(a, d), CGAL::squared_distance(a, e),
+                                       CGAL::squared_distance(b, d), CGAL::squared_distance(b, e), CGAL::squared_distance(d, e)});
+        if (std::isfinite(hi) && hi - lo <= 2e-12 * hi && hi <= 1e6 * edge2) return to_p(x);
+        const CGAL::Cartesian_converter<K, EK> to_exact;
+        const EK::Point_3 ex = CGAL::circumcenter(to_exact(a), to_exact(b), to_exact(d), to_exact(e));
+        return {CGAL::to_double(ex.x()), CGAL::to_double(ex.y()), CGAL::to_double(ex.z())};
     }
     /// The vertices of facet (c, i) (finite facets only), in an order whose normal
     /// cross(b − a, c − a) points away from c's vertex i when c is positively oriented.
@@ -89,12 +110,28 @@ public:
         const Cell w = c->neighbor(i);
         return CGAL::orientation(a, b, d, w->vertex(w->index(c))->point()) == CGAL::POSITIVE ? n : -n;
     }
-    /// A unit normal of the facet's plane.
+    /// A unit normal of the facet's plane, cross(f1 − f0, f2 − f0) normalised; computed exactly
+    /// when the facet is so thin (sine of its angle at f0 below 1e-4) that the double cross
+    /// product loses digits.
     [[nodiscard]] static Vec3 facet_normal(const std::array<Point3, 3>& f) {
-        return normalized(cross(f[1] - f[0], f[2] - f[0]));
+        const Vec3 u = f[1] - f[0], v = f[2] - f[0], n = cross(u, v);
+        if (norm(n) > 1e-4 * norm(u) * norm(v)) return normalized(n);
+        const EK::Vector_3 eu = EK::Point_3(f[1].x, f[1].y, f[1].z) - EK::Point_3(f[0].x, f[0].y, f[0].z);
+        const EK::Vector_3 ev = EK::Point_3(f[2].x, f[2].y, f[2].z) - EK::Point_3(f[0].x, f[0].y, f[0].z);
+        const EK::Vector_3 en = CGAL::cross_product(eu, ev);
+        return normalized(Vec3{CGAL::to_double(en.x()), CGAL::to_double(en.y()), CGAL::to_double(en.z())});
     }
+    /// The circumcentre of the facet, exact when the double one is off by more than about
+    /// 1e-12 of the radius (thin facets).
     [[nodiscard]] static Point3 facet_circumcenter(const std::array<Point3, 3>& f) {
-        return to_p(CGAL::circumcenter(to_k(f[0]), to_k(f[1]), to_k(f[2])));
+        const KPoint x = CGAL::circumcenter(to_k(f[0]), to_k(f[1]), to_k(f[2]));
+        const double ra = CGAL::squared_distance(x, to_k(f[0])), rb = CGAL::squared_distance(x, to_k(f[1])),
+                     rc = CGAL::squared_distance(x, to_k(f[2]));
+        const double lo = std::min({ra, rb, rc}), hi = std::max({ra, rb, rc});
+        if (std::isfinite(hi) && hi - lo <= 2e-12 * hi) return to_p(x);
+        const EK::Point_3 ex = CGAL::circumcenter(EK::Point_3(f[0].x, f[0].y, f[0].z), EK::Point_3(f[1].x, f[1].y, f[1].z),
+                                                  EK::Point_3(f[2].x, f[2].y, f[2].z));
+        return {CGAL::to_double(ex.x()), CGAL::to_double(ex.y()), CGAL::to_double(ex.z())};
     }
     /// Distance from x to the nearest sample (hint: a cell near x).
     [[nodiscard]] double nearest_sample_distance(const Point3& x, Cell hint) const {

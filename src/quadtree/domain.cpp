@@ -7,7 +7,7 @@
 #include <string>
 
 #include "dynmesh/error.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 
 namespace dynmesh {
 
@@ -15,7 +15,7 @@ namespace {
 
 template <int D>
 std::string point_text(std::size_t i, const PointD<D>& p) {
-    return "auto_domain: point " + std::to_string(i) + " " + detail::format_point<D>(p);
+    return "auto_domain: point " + std::to_string(i) + " " + format_point(p);
 }
 
 }  // namespace

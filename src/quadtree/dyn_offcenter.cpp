@@ -24,7 +24,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/quadtree/live_mesh.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 
 namespace dynmesh {
 namespace {
@@ -1511,9 +1511,9 @@ DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
     for (std::size_t i = 0; i < points.size(); ++i)
         if (const std::uint32_t q = impl->too_close(points[i]); q != kNone)
             throw InvalidInput("DynOffCenterMesh2::build: point " + std::to_string(i) + " " +
-                               detail::format_point<2>(points[i]) + " is closer to the point " +
-                               detail::format_point<2>(impl->verts[q].pos) + " than the " +
-                               detail::format_double(impl->kernel.min_separation()) +
+                               format_point(points[i]) + " is closer to the point " +
+                               format_point(impl->verts[q].pos) + " than the " +
+                               format_number(impl->kernel.min_separation()) +
                                " the off-center refinement resolves (offcenter_min_separation)",
                                i);
     impl->propagate();

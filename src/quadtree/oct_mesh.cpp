@@ -10,7 +10,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/geometry/scaled_frame.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 #include "leaf_mesh.hpp"
 
 namespace dynmesh {
@@ -181,8 +181,8 @@ std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
                              (static_cast<long double>(hi.y) - lo.y) *
                              (static_cast<long double>(hi.z) - lo.z);
     if (std::fabs(volume6 / 6 - want) > 1e-12L * want)
-        bad.push_back("total volume " + detail::format_double(static_cast<double>(volume6 / 6)) +
-                      " differs from the domain volume " + detail::format_double(static_cast<double>(want)));
+        bad.push_back("total volume " + format_number(static_cast<double>(volume6 / 6)) +
+                      " differs from the domain volume " + format_number(static_cast<double>(want)));
     std::sort(faces.begin(), faces.end());
     for (std::size_t i = 0; i < faces.size();) {
         std::size_t j = i + 1;

@@ -21,7 +21,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 
 namespace dynmesh {
 namespace {
@@ -331,11 +331,11 @@ OffCenterMesh2 OffCenterRefiner::run() {
         const Vec2 a = to_vec(e->first->vertex(Delaunay::ccw(e->second))->point());
         const Vec2 b = to_vec(e->first->vertex(Delaunay::cw(e->second))->point());
         if (dot(b - a, b - a) < min_sep2)
-            throw InvalidInput("offcenter_mesh: points " + detail::format_point<2>(a) + " and " +
-                               detail::format_point<2>(b) + " are closer than the " +
-                               detail::format_double(kernel_.min_separation()) +
+            throw InvalidInput("offcenter_mesh: points " + format_point(a) + " and " +
+                               format_point(b) + " are closer than the " +
+                               format_number(kernel_.min_separation()) +
                                " the off-center refinement resolves in this domain at rho = " +
-                               detail::format_double(options_.rho));
+                               format_number(options_.rho));
     }
     // Box corners: the hull of V is the box from now on.
     for (int side = 0; side < 4; ++side) {
@@ -440,8 +440,8 @@ void check_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who) {
                                std::fabs(domain.origin.x + w), std::fabs(domain.origin.y + w)});
     if (!std::isfinite(w) || !std::isfinite(s)) return;  // DynQuadtree's constructor says why
     if (w < kOffCenterMinScale || w > kOffCenterMaxScale || s > kOffCenterMaxScale)
-        throw InvalidInput(std::string(who) + ": the domain (width " + format_double(w) +
-                           ", coordinates up to " + format_double(s) +
+        throw InvalidInput(std::string(who) + ": the domain (width " + format_number(w) +
+                           ", coordinates up to " + format_number(s) +
                            ") is outside the range of the off-center refinement: width and "
                            "coordinates must lie in [1e-120, 1e120] (scale the points by a power "
                            "of two)");
@@ -648,8 +648,8 @@ std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh) {
     const double x0 = mesh.origin.x, y0 = mesh.origin.y, x1 = x0 + mesh.width, y1 = y0 + mesh.width;
     const long double want = (static_cast<long double>(x1) - x0) * (static_cast<long double>(y1) - y0);
     if (std::fabs(area2 / 2 - want) > 1e-12L * want)
-        bad.push_back("total area " + detail::format_double(static_cast<double>(area2 / 2)) +
-                      " differs from the box area " + detail::format_double(static_cast<double>(want)));
+        bad.push_back("total area " + format_number(static_cast<double>(area2 / 2)) +
+                      " differs from the box area " + format_number(static_cast<double>(want)));
     for (const auto& [e, c] : apex) {
         const auto twin = apex.find({e.second, e.first});
         const Vec2 &a = mesh.points[e.first], &b = mesh.points[e.second];

@@ -11,7 +11,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
 #include "dynmesh/geometry/scaled_frame.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 #include "leaf_mesh.hpp"
 
 namespace dynmesh {
@@ -94,8 +94,8 @@ std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
     const double x0 = mesh.origin.x, y0 = mesh.origin.y, x1 = x0 + mesh.width, y1 = y0 + mesh.width;
     const long double want = (static_cast<long double>(x1) - x0) * (static_cast<long double>(y1) - y0);
     if (std::fabs(area2 / 2 - want) > 1e-12L * want)
-        bad.push_back("total area " + detail::format_double(static_cast<double>(area2 / 2)) +
-                      " differs from the domain area " + detail::format_double(static_cast<double>(want)));
+        bad.push_back("total area " + format_number(static_cast<double>(area2 / 2)) +
+                      " differs from the domain area " + format_number(static_cast<double>(want)));
     for (const auto& [e, dirs] : edges) {
         const std::string name =
             "edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ")";

@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "dynmesh/error.hpp"
-#include "format.hpp"
+#include "dynmesh/geometry/format.hpp"
 
 namespace dynmesh {
 
@@ -62,9 +62,6 @@ const std::vector<std::array<int, D>>& block_k(int k) {
     static const auto v2 = offsets<D>(2);
     return k == 2 ? v2 : v1;
 }
-
-using detail::format_double;
-using detail::format_point;
 
 }  // namespace
 
@@ -130,16 +127,16 @@ DynQuadtree<D>::DynQuadtree(const QuadtreeOptions<D>& options) : options_(option
     for (int i = 0; i < D; ++i)
         DYNMESH_CHECK(
             std::isfinite(options.origin[static_cast<std::size_t>(i)]),
-            "DynQuadtree: domain origin " + format_point<D>(options.origin) + " is not finite");
+            "DynQuadtree: domain origin " + format_point(options.origin) + " is not finite");
     DYNMESH_CHECK(
         std::isfinite(options.width) && options.width > 0,
-        "DynQuadtree: domain width " + format_double(options.width) + " must be finite and > 0");
+        "DynQuadtree: domain width " + format_number(options.width) + " must be finite and > 0");
     for (int i = 0; i < D; ++i)
         DYNMESH_CHECK(std::isfinite(options.origin[static_cast<std::size_t>(i)] + options.width),
-                      "DynQuadtree: the domain box at " + format_point<D>(options.origin) +
-                          " of width " + format_double(options.width) + " overflows");
+                      "DynQuadtree: the domain box at " + format_point(options.origin) +
+                          " of width " + format_number(options.width) + " overflows");
     DYNMESH_CHECK(std::ldexp(options.width, -kLevels) >= DBL_MIN,
-                  "DynQuadtree: domain width " + format_double(options.width) +
+                  "DynQuadtree: domain width " + format_number(options.width) +
                       " is too small for the quadtree grid (needs W >= 2^52 * DBL_MIN)");
     int e = 0;
     dyadic_ = std::frexp(options.width, &e) == 0.5;
@@ -208,7 +205,7 @@ template <int D>
 typename DynQuadtree<D>::GridPoint DynQuadtree<D>::grid_point(const Point& p) const {
     GridPoint g;
     DYNMESH_CHECK(snap(p, g) == InsertResult::Inserted,
-                  "DynQuadtree::grid_point: point " + format_point<D>(p) +
+                  "DynQuadtree::grid_point: point " + format_point(p) +
                       " is not finite or not in the middle third of the domain");
     return g;
 }
@@ -542,7 +539,7 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
             const InsertResult r = tree.snap(points[i], g);
             const auto bad = [&](const std::string& what) {
                 return InvalidInput("DynQuadtree::build: point " + std::to_string(i) + " " +
-                                        format_point<D>(points[i]) + " " + what,
+                                        format_point(points[i]) + " " + what,
                                     i);
             };
             if (r == InsertResult::NotFinite) throw bad("is not finite");
@@ -685,11 +682,11 @@ DynQuadtree<D> DynQuadtree<D>::build(std::span<const Point> points,
         }
         throw InvalidInput(
             "DynQuadtree::build: point " + std::to_string(best) + " " +
-            format_point<D>(points[best]) +
+            format_point(points[best]) +
             " is too close to other points for double precision at its coordinates: its tree "
             "needs a cell of size " +
-            format_double(std::ldexp(options.width, bad->level - kLevels)) + " at " +
-            format_point<D>(corner) + ", below the coordinate resolution there" +
+            format_number(std::ldexp(options.width, bad->level - kLevels)) + " at " +
+            format_point(corner) + ", below the coordinate resolution there" +
             (tree.dyadic() ? "" : " (a dyadic domain, e.g. auto_domain(), resolves finer)"),
             best);
     }

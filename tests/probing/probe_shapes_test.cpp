@@ -65,7 +65,8 @@ void expect_guarantees(const ProbeRun& r) {
     // Detection walks each activated node's edge forward and back.
     EXPECT_EQ(p.detection_edges, 2 * p.activations);
     if (r.options.mode == ProbingMode::Device) {
-        EXPECT_GT(p.segments_checked, 0u);
+        // Every Voronoi edge travelled is at least one move the safety monitor verified.
+        EXPECT_GE(p.segments_checked, p.detection_edges + p.positioning_edges);
     }
     // Angles: a refined sample is more than eps from every other (its ball was empty and
     // larger than eps) and every facet's circumradius is at most its ball's radius <= eps, so

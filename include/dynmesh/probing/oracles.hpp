@@ -205,7 +205,7 @@ class MeshOracle final : public ProbeObject {
 public:
     /// \throw InvalidInput naming the problem when the soup is not an oriented 2-manifold
     /// (inconsistent orientation, non-manifold edge or vertex), has a boundary (not closed),
-    /// or has no triangle.
+    /// intersects itself (CGAL's self-intersection test), or has no triangle.
     explicit MeshOracle(const TriangleSoup& soup, OracleOptions options = {});
     ~MeshOracle() override;
     MeshOracle(const MeshOracle&) = delete;
@@ -218,16 +218,17 @@ public:
     /// crossings is tested at its midpoint.
     [[nodiscard]] bool segment_is_free(const Point3& a, const Point3& b) const override;
     [[nodiscard]] double distance(const Point3& p) const override;
-    /// The vertices plus, on each triangle, a grid of points `spacing` apart.
+    /// The vertices the triangles use plus, on each triangle, a grid of points `spacing` apart.
     [[nodiscard]] std::vector<Point3> sample_surface(double spacing) const override;
     [[nodiscard]] double reach() const override { return 0; }
     [[nodiscard]] double diameter() const override;
     [[nodiscard]] double area() const override;
     [[nodiscard]] int components() const override;
     [[nodiscard]] int euler_characteristic() const override;
-    /// One point strictly inside O per connected component of the mesh: a face centroid
-    /// offset by a small fraction of the face size to the side that Side_of_triangle_mesh says
-    /// is inside. \throw InvalidInput when no face of a component gives one.
+    /// One point strictly inside O per connected component of the mesh, well away from S: for
+    /// each of the component's 16 largest faces, the midpoint of the chord from the face's
+    /// centroid along the inward normal to the first wall it meets; the one farthest from S.
+    /// \throw InvalidInput when no face of a component gives one.
     [[nodiscard]] std::vector<Point3> interior_points() const;
     [[nodiscard]] Bbox3 bbox() const;
 

@@ -24,9 +24,9 @@
 /// every segment.
 ///
 /// `ProbingMode::Omniscient` is the baseline of the benchmarks: the same refinement, but every
-/// Voronoi edge created is tested directly (from whichever end is outside O, told by the
-/// ground truth; an edge with both ends inside O counts as missing S, as a sign-change oracle
-/// would decide), and the device never moves.
+/// Voronoi edge created is tested directly (a ray from whichever end is outside O, told by the
+/// ground truth; for an edge with both ends inside O that still leaves O, from a free point of
+/// it), and the device never moves.
 
 #include <cstddef>
 #include <cstdint>
