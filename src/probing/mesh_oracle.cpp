@@ -1,7 +1,9 @@
 /// The triangle-mesh oracle: CGAL AABB tree, first_intersection(Ray_3), Side_of_triangle_mesh.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -116,13 +118,12 @@ bool MeshOracle::is_free(const Point3& p) const {
     return !impl_->inside(p) || distance(p) <= tolerance();
 }
 
-bool MeshOracle::segment_is_free(const Point3& a, const Point3& b) const {
-    if (!is_free(a) || !is_free(b)) return false;
-    const K::Segment_3 seg(to_cgal(a), to_cgal(b));
+std::vector<double> MeshOracle::crossings(const Point3& a, const Point3& b) const {
     const double len = dynmesh::distance(a, b);
-    if (len <= tolerance() || !impl_->tree.do_intersect(seg)) return true;
-    const Vec3 u = (b - a) / len;
     std::vector<double> ts{0, len};
+    const K::Segment_3 seg(to_cgal(a), to_cgal(b));
+    if (len <= tolerance() || !impl_->tree.do_intersect(seg)) return ts;
+    const Vec3 u = (b - a) / len;
     std::vector<Tree::Intersection_and_primitive_id<K::Segment_3>::Type> hits;
     impl_->tree.all_intersections(seg, std::back_inserter(hits));
     for (const auto& h : hits) {
@@ -134,10 +135,31 @@ bool MeshOracle::segment_is_free(const Point3& a, const Point3& b) const {
         }
     }
     std::sort(ts.begin(), ts.end());
+    return ts;
+}
+
+bool MeshOracle::segment_is_free(const Point3& a, const Point3& b) const {
+    if (!is_free(a) || !is_free(b)) return false;
+    const std::vector<double> ts = crossings(a, b);
+    if (ts.size() == 2) return true;  // no crossing between two free ends
+    const Vec3 u = (b - a) / std::max(dynmesh::distance(a, b), std::numeric_limits<double>::min());
     for (std::size_t i = 0; i + 1 < ts.size(); ++i)
         if (ts[i + 1] - ts[i] > tolerance() && impl_->inside(a + 0.5 * (ts[i] + ts[i + 1]) * u))
             return false;
     return true;
+}
+
+std::optional<double> MeshOracle::free_point_on(const Point3& a, const Point3& b) const {
+    if (is_free(a)) return 0.0;
+    const std::vector<double> ts = crossings(a, b);
+    if (ts.size() == 2) return std::nullopt;  // no crossing: inside O like a
+    const Vec3 u = (b - a) / std::max(dynmesh::distance(a, b), std::numeric_limits<double>::min());
+    for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+        const double mid = 0.5 * (ts[i] + ts[i + 1]);
+        if (ts[i + 1] - ts[i] > tolerance() && !impl_->inside(a + mid * u)) return mid;
+    }
+    if (is_free(b)) return ts.back();
+    return std::nullopt;
 }
 
 std::optional<ProbeHit> MeshOracle::cast_checked(const Point3& s, const Vec3& d, double t_max,

@@ -337,8 +337,8 @@ private:
         return r;
     }
 
-    /// Omniscient mode: the edge (c, i) tested from whichever end is outside O; the record is
-    /// kept on c's side.
+    /// Omniscient mode: the edge (c, i) tested from whichever end is outside O (from a free
+    /// point inside it when neither is); the record is kept on c's side.
     void test_edge(Cell c, int i) {
         Record& r = Tri::info(c).rec[i];
         const EdgeLine L = edge_line(c, i);
@@ -359,18 +359,14 @@ private:
             r.s = L.end();
             r.d = -L.D;
             hit = cast_from(r.s, r.d, len);
-        } else if (!o_.ground_truth->segment_is_free(L.start(), L.end())) {
+        } else if (const auto t = o_.ground_truth->free_point_on(L.start(), L.end())) {
             // Both ends inside O, yet the edge leaves it (it joins two components, say): cast
-            // from a free point of the edge, the first of 64 evenly spaced ones.
-            for (int k = 1; k < 64 && !hit; ++k) {
-                const Point3 q = L.start() + (len * k / 64) * L.D;
-                if (!o_.ground_truth->is_free(q)) continue;
-                r.s = q;
-                hit = cast_from(q, L.D, len * (64 - k) / 64);
-                if (!hit) {
-                    r.d = -L.D;
-                    hit = cast_from(q, r.d, len * k / 64);
-                }
+            // both ways from a free point of it.
+            r.s = L.start() + *t * L.D;
+            hit = cast_from(r.s, L.D, std::max(0.0, len - *t));
+            if (!hit) {
+                r.d = -L.D;
+                hit = cast_from(r.s, r.d, *t);
             }
         }
         if (!hit) return;

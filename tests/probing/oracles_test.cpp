@@ -450,6 +450,36 @@ TEST(MakeProbeObject, BallsFile) {
     }
 }
 
+TEST(GroundTruth, FreePointOfASegmentBetweenTwoComponents) {
+    // Two unit spheres centred at x = ±1.5: the segment between their centres leaves O for
+    // |x| < 0.5 (about, on the level-3 mesh).
+    TriangleSoup two = unit_icosphere(3);
+    const std::size_t n = two.points.size(), m = two.triangles.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        two.points.push_back(two.points[i] + Vec3{1.5, 0, 0});
+        two.points[i] = two.points[i] - Vec3{1.5, 0, 0};
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+        auto t = two.triangles[k];
+        for (auto& v : t) v += std::uint32_t(n);
+        two.triangles.push_back(t);
+    }
+    const MeshOracle mesh(two);
+    const BallsOracle balls({{{-1.5, 0, 0}, 1}, {{1.5, 0, 0}, 1}});
+    const Point3 a{-1.5, 0, 0}, b{1.5, 0, 0};
+    for (const GroundTruth* g : {static_cast<const GroundTruth*>(&mesh), static_cast<const GroundTruth*>(&balls)}) {
+        const auto t = g->free_point_on(a, b);
+        ASSERT_TRUE(t);
+        EXPECT_GT(*t, 0.9);
+        EXPECT_LT(*t, 2.1);
+        EXPECT_TRUE(g->is_free(a + *t * kX));
+        // Within one component there is none; a free end is found at once.
+        EXPECT_FALSE(g->free_point_on(a, a + 0.9 * kX));
+        EXPECT_FALSE(g->free_point_on(a + 0.2 * kY, a + 0.3 * kZ));
+        EXPECT_EQ(g->free_point_on({0, 0, 0}, a), 0.0);
+    }
+}
+
 TEST(GroundTruth, SegmentsOfImplicitShapes) {
     const TorusOracle o(Torus({0, 0, 0}, 2, 1));
     EXPECT_TRUE(o.segment_is_free({0, 0, 5}, {0, 0, -5}));  // down the hole

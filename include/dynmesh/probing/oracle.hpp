@@ -57,6 +57,15 @@ public:
     [[nodiscard]] virtual bool is_free(const Point3& p) const = 0;
     /// True when the closed segment ab misses O (it may touch S).
     [[nodiscard]] virtual bool segment_is_free(const Point3& a, const Point3& b) const = 0;
+    /// The distance from a of a free point of the closed segment ab, if it has one. The default
+    /// tests 65 evenly spaced points (so it may miss a free piece shorter than |b − a|/64);
+    /// objects that can find the crossings override it.
+    [[nodiscard]] virtual std::optional<double> free_point_on(const Point3& a, const Point3& b) const {
+        const double len = dynmesh::distance(a, b);
+        for (int k = 0; k <= 64; ++k)
+            if (is_free(a + (k / 64.0) * (b - a))) return len * k / 64;
+        return std::nullopt;
+    }
     /// Unsigned distance from p to S.
     [[nodiscard]] virtual double distance(const Point3& p) const = 0;
     /// Points of S about `spacing` apart (for two-sided Hausdorff distances).

@@ -217,6 +217,8 @@ public:
     /// do_intersect(Segment_3) on the tree; when it meets S, every piece between consecutive
     /// crossings is tested at its midpoint.
     [[nodiscard]] bool segment_is_free(const Point3& a, const Point3& b) const override;
+    /// The same crossings: the midpoint of the first free piece (or a free end).
+    [[nodiscard]] std::optional<double> free_point_on(const Point3& a, const Point3& b) const override;
     [[nodiscard]] double distance(const Point3& p) const override;
     /// The vertices the triangles use plus, on each triangle, a grid of points `spacing` apart.
     [[nodiscard]] std::vector<Point3> sample_surface(double spacing) const override;
@@ -233,6 +235,8 @@ public:
     [[nodiscard]] Bbox3 bbox() const;
 
 private:
+    /// 0, |b − a| and the distances from a of every point where ab meets a triangle, sorted.
+    [[nodiscard]] std::vector<double> crossings(const Point3& a, const Point3& b) const;
     [[nodiscard]] std::optional<ProbeHit> cast_checked(const Point3& s, const Vec3& d,
                                                        double t_max, bool strict) const override;
     struct Impl;
