@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/system/process.hpp"
 #include "io_common.hpp"
 
 namespace dynmesh {
@@ -71,6 +72,7 @@ void remove_staged_now() {
 }
 
 extern "C" void dynmesh_output_signal_handler(int sig) {
+    kill_running_process();  // a plotting child must not write after the cleanup
     remove_staged_now();
     std::signal(sig, SIG_DFL);
     std::raise(sig);

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <atomic>
 #include <csignal>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -52,6 +53,9 @@ private:
     std::string current_, last_;
 };
 
+/// The child run_process is waiting for (0: none), for kill_running_process().
+std::atomic<pid_t> g_running{0};
+
 struct SpawnActions {
     posix_spawn_file_actions_t actions{};
     SpawnActions() { posix_spawn_file_actions_init(&actions); }
@@ -86,6 +90,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
         return r;
     }
     r.started = true;
+    g_running.store(pid);
     TailLine tail;
     char buf[4096];
     const auto start = std::chrono::steady_clock::now();
@@ -113,6 +118,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
             exited = true;
         }
     }
+    g_running.store(0);
     // What the program wrote before it exited (without waiting for descendants).
     ::fcntl(pipe_fd[0], F_SETFL, O_NONBLOCK);
     for (ssize_t n; pipe_open && (n = ::read(pipe_fd[0], buf, sizeof buf)) > 0;)
@@ -122,6 +128,14 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
     if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
     r.error_tail = tail.line();
     return r;
+}
+
+void kill_running_process() noexcept {
+    const pid_t pid = g_running.exchange(0);
+    if (pid <= 0) return;
+    ::kill(pid, SIGKILL);
+    while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+    }
 }
 
 fs::path executable_directory() {

@@ -1,12 +1,15 @@
 // All-or-nothing outputs: clashes refused before any work, staged files moved together.
 #include <sys/stat.h>
 
+#include <chrono>
 #include <csignal>
+#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "dynmesh/io/output_set.hpp"
 #include "dynmesh/io/text_file.hpp"
+#include "dynmesh/system/process.hpp"
 #include "io_test_util.hpp"
 #include "test_support.hpp"
 
@@ -225,6 +228,22 @@ TEST(OutputSetDeathTest, ASignalRemovesTheStagedFiles) {
             std::raise(SIGTERM);
         },
         testing::KilledBySignal(SIGTERM), "");
+    EXPECT_TRUE(listing(dir).empty()) << listing(dir).front();
+}
+
+TEST(OutputSetDeathTest, ASignalDuringAChildProcessKillsTheChildFirst) {
+    const auto dir = scratch_dir("output_set_signal_child");
+    const std::string late = (dir / "late").string();
+    EXPECT_EXIT(
+        {
+            install_output_cleanup_on_signals();
+            OutputSet set;
+            write_text_file(set.add_file(dir / "a.png", "--png"), "partial");
+            // The child signals its parent, then writes a file a second later.
+            (void)run_process({"/bin/sh", "-c", "sleep 0.2; kill -TERM $PPID; sleep 1; echo late > \"$0\"", late});
+        },
+        testing::KilledBySignal(SIGTERM), "");
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     EXPECT_TRUE(listing(dir).empty()) << listing(dir).front();
 }
 

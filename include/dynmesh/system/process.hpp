@@ -31,6 +31,11 @@ struct ProcessResult {
 [[nodiscard]] ProcessResult run_process(const std::vector<std::string>& argv,
                                         double timeout_seconds = 600);
 
+/// Kills (SIGKILL) and reaps the program run_process is waiting for, if any. Async-signal-safe:
+/// the signal cleanup of staged outputs calls it first, so that no child outlives an
+/// interrupted run or writes after its outputs were removed.
+void kill_running_process() noexcept;
+
 /// The directory holding the running executable (from /proc/self/exe); empty if unknown.
 [[nodiscard]] std::filesystem::path executable_directory();
 
