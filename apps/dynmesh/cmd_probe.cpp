@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -306,12 +308,18 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     outputs.report(rep);
     outputs.commit();
     if (!a.common.quiet) {
+        // Three significant digits for people; the report has every digit.
+        const auto short_number = [](double v) {
+            std::ostringstream os;
+            os << std::setprecision(3) << v;
+            return os.str();
+        };
         std::cout << "probe: " << p.vertices << " vertices, " << p.facets << (a.dim == 3 ? " facets" : " edges")
                   << ", Euler " << chk.euler << ", Hausdorff "
-                  << (chk.closed_manifold ? format_number(chk.hausdorff) : std::string("n/a")) << " (bound "
-                  << format_number(chk.hausdorff_bound) << "); " << p.probes << " probes, "
-                  << p.voronoi_edges_travelled << " Voronoi edges travelled, path " << p.path_length << ", "
-                  << p.seconds << " s\n  wrote " << a.output << "\n";
+                  << (chk.closed_manifold ? short_number(chk.hausdorff) : std::string("n/a")) << " (bound "
+                  << short_number(chk.hausdorff_bound) << "); " << p.probes << " probes, "
+                  << p.voronoi_edges_travelled << " Voronoi edges travelled, path " << std::fixed << std::setprecision(1) << p.path_length << std::defaultfloat
+                  << ", " << short_number(p.seconds) << " s\n  wrote " << a.output << "\n";
         for (const std::string& s : problems) std::cout << "  check: " << s << "\n";
         if (!a.check && chk.closed_manifold && chk.hausdorff > chk.hausdorff_bound)
             std::cerr << "dynmesh probe: warning: the Hausdorff distance exceeds the bound: eps_S is not a lower "
