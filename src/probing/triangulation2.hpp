@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
+#include "circumcenter_accuracy.hpp"
 #include "refiner_types.hpp"
 
 namespace dynmesh::detail {
@@ -60,12 +61,7 @@ public:
         const KPoint& b = c->vertex(1)->point();
         const KPoint& d = c->vertex(2)->point();
         const KPoint x = CGAL::circumcenter(a, b, d);
-        const double ra = CGAL::squared_distance(x, a), rb = CGAL::squared_distance(x, b),
-                     rd = CGAL::squared_distance(x, d);
-        const double lo = std::min({ra, rb, rd}), hi = std::max({ra, rb, rd});
-        const double edge2 = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(a, d),
-                                       CGAL::squared_distance(b, d)});
-        if (std::isfinite(hi) && hi - lo <= 2e-12 * hi && hi <= 1e6 * edge2) return to_p(x);
+        if (circumcenter_is_accurate(x, std::array{&a, &b, &d})) return to_p(x);
         using EK = CGAL::Exact_predicates_exact_constructions_kernel;
         const CGAL::Cartesian_converter<K, EK> to_exact;
         const EK::Point_2 ex = CGAL::circumcenter(to_exact(a), to_exact(b), to_exact(d));

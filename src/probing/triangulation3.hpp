@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
+#include "circumcenter_accuracy.hpp"
 #include "refiner_types.hpp"
 
 namespace dynmesh::detail {
@@ -68,15 +69,7 @@ public:
         const KPoint& d = c->vertex(2)->point();
         const KPoint& e = c->vertex(3)->point();
         const KPoint x = CGAL::circumcenter(a, b, d, e);
-        const double ra = CGAL::squared_distance(x, a), rb = CGAL::squared_distance(x, b),
-                     rd = CGAL::squared_distance(x, d), re = CGAL::squared_distance(x, e);
-        const double lo = std::min({ra, rb, rd, re}), hi = std::max({ra, rb, rd, re});
-        // A nearly flat cell has its centre far along the normal, on a side the double
-        // construction may get wrong while its distances still agree: exact as well when the
-        // radius exceeds 1e3 times the longest edge.
-        const double edge2 = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(a, d), CGAL::squared_distance(a, e),
-                                       CGAL::squared_distance(b, d), CGAL::squared_distance(b, e), CGAL::squared_distance(d, e)});
-        if (std::isfinite(hi) && hi - lo <= 2e-12 * hi && hi <= 1e6 * edge2) return to_p(x);
+        if (circumcenter_is_accurate(x, std::array{&a, &b, &d, &e})) return to_p(x);
         const CGAL::Cartesian_converter<K, EK> to_exact;
         const EK::Point_3 ex = CGAL::circumcenter(to_exact(a), to_exact(b), to_exact(d), to_exact(e));
         return {CGAL::to_double(ex.x()), CGAL::to_double(ex.y()), CGAL::to_double(ex.z())};

@@ -174,15 +174,21 @@ TEST(ProbeShapes, RealMeshesThroughTheMeshOracle) {
     }
 }
 
-/// Spec §7 test 7: two runs give the same sample, facets and counters.
-TEST(ProbeShapes, RunsAreDeterministic) {
-    const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35));
+/// A quick run on the torus (1, 0.35): eps 0.06, outside the guarantee.
+ProbingOptions coarse_torus_options(const TorusOracle& torus) {
     ProbingOptions o;
     o.eps = 0.06;
     o.eps_S = 0.35;
     o.allow_unguaranteed = true;
     o.omega = {{0, 0, 0}, 1.5};
     o.interior_points = {torus.shape().interior_point()};
+    return o;
+}
+
+/// Spec §7 test 7: two runs give the same sample, facets and counters.
+TEST(ProbeShapes, RunsAreDeterministic) {
+    const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35));
+    ProbingOptions o = coarse_torus_options(torus);
     const ProbingResult a = probe_surface(torus, o), b = probe_surface(torus, o);
     EXPECT_EQ(a.sample, b.sample);
     EXPECT_EQ(a.mesh.points, b.mesh.points);
@@ -239,12 +245,7 @@ TEST(ProbeShapes, TheMonitorStopsTheRunAtAnUnsafeMove) {
     };
     const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35));
     const LyingTruth lying(torus);
-    ProbingOptions o;
-    o.eps = 0.06;
-    o.eps_S = 0.35;
-    o.allow_unguaranteed = true;
-    o.omega = {{0, 0, 0}, 1.5};
-    o.interior_points = {torus.shape().interior_point()};
+    ProbingOptions o = coarse_torus_options(torus);
     o.ground_truth = &lying;
     try {
         (void)probe_surface(torus, o);
