@@ -456,6 +456,12 @@ probe_bad)
     expect 3 "nan_balls.txt:2" balls:nan_balls.txt --eps 0.01 --eps-s 0.1
     printf '0 0 0 1\n1.5 0 0 1\n' > overlapping.txt
     expect 3 "overlapping.txt:2" balls:overlapping.txt --eps 0.01 --eps-s 0.1
+    : > no_balls.txt
+    expect 3 "no ball in the file" balls:no_balls.txt --eps 0.01 --eps-s 0.1
+    printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 nan\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n' > nan_mesh.off
+    expect 3 "nan_mesh.off:6" nan_mesh.off --eps-s 0.1 --eps 0.005
+    expect 2 "eps-s" sphere:1 --eps 0.05 --eps-s nan
+    expect 2 "not inside the object" torus:1,0.35 --eps 0.02 --interior 0,0,0   # the hole
     ;;
 quadtree_ops)
     pts=$data/planar/dots.node
