@@ -35,6 +35,7 @@ struct ProbeArgs {
     std::string omega;
     int dim = 3;
     std::string mode = "device";
+    std::string positioning = "lca";
     std::string out_dir, png, sample;
     std::size_t every = 200;
     std::size_t max_points = 2'000'000;
@@ -208,6 +209,7 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
                              " from the centre (up to 1/64 of the radius): Omega must contain it with a margin");
     }
     o.mode = a.mode == "omniscient" ? ProbingMode::Omniscient : ProbingMode::Device;
+    o.positioning = a.positioning == "boundary" ? ProbingPositioning::Boundary : ProbingPositioning::Lca;
     if (a.check || o.mode == ProbingMode::Omniscient) o.ground_truth = &object;
     o.check_every = a.check ? 0 : SIZE_MAX;
     o.record_path = !png_path.empty() || !out_dir.empty();
@@ -267,6 +269,7 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
                           {"object", a.object},
                           {"dim", a.dim},
                           {"mode", a.mode},
+                          {"positioning", a.positioning},
                           {"output", a.output},
                           {"eps", p.eps},
                           {"eps_S", o.eps_S},
@@ -369,6 +372,11 @@ void register_probe(CLI::App& root, int& result) {
                     "device: the paper's moving device; omniscient: the same refinement testing every "
                     "Voronoi edge from anywhere, without moving (the baseline)")
         ->check(CLI::IsMember({"device", "omniscient"}));
+    sub->add_option("--positioning", args->positioning,
+                    "How the device reaches the next node to probe from: lca (through the lowest common "
+                    "ancestor of the two nodes' free paths when they share one, default) or boundary "
+                    "(always out to the boundary of Omega and back in)")
+        ->check(CLI::IsMember({"lca", "boundary"}));
     sub->add_option("--out", args->out_dir,
                     "Directory for a ParaView series of the refinement (probe.pvd, probe_NNNNNNN.vtp every "
                     "--every insertions with the device's path since the previous one) and path.vtp");

@@ -9,7 +9,8 @@
 /// positioning edges, path lengths, Hausdorff distance with its bound, wall time. The summary
 /// prints probes/N, cells/(N log N), time per vertex and the exponents fitted on log–log axes
 /// (probes ~ N^a, cells ~ N^b, displacement ~ N^c, time ~ N^d). With DYNMESH_SWEEP_CSV=FILE the
-/// table is written as CSV for scripts/plot_probe_sweep.py.
+/// table is written as CSV for scripts/plot_probe_sweep.py. An ablation reruns the torus and the
+/// genus-2 surface at three ε with positioning via ∂Ω (ProbingPositioning::Boundary).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -69,24 +70,32 @@ std::vector<Row>& rows() {
     return r;
 }
 
-void BM_Sweep(benchmark::State& state) {
-    const std::size_t s = static_cast<std::size_t>(state.range(0)) / kSteps;
-    const int k = static_cast<int>(state.range(0) % kSteps);
-    const ProbeSetup& set = setup(s);
+ProbingOptions sweep_options(const ProbeSetup& set, double eps) {
     ProbingOptions o;
-    o.eps = eps_of(s, k);
+    o.eps = eps;
     o.eps_S = set.object->reach();
     o.allow_unguaranteed = true;
     o.omega = set.omega;
     o.interior_points = set.interior_points;
     o.check_every = SIZE_MAX;
+    return o;
+}
+
+ProbingResult timed_probe(const ProbeObject& object, const ProbingOptions& o, double& seconds) {
+    const auto t0 = Clock::now();
+    ProbingResult r = probe_surface(object, o);
+    seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return r;
+}
+
+void BM_Sweep(benchmark::State& state) {
+    const std::size_t s = static_cast<std::size_t>(state.range(0)) / kSteps;
+    const int k = static_cast<int>(state.range(0) % kSteps);
+    const ProbeSetup& set = setup(s);
+    const ProbingOptions o = sweep_options(set, eps_of(s, k));
     ProbingResult r;
     double seconds = 0;
-    for (auto _ : state) {
-        const auto t0 = Clock::now();
-        r = probe_surface(*set.object, o);
-        seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
+    for (auto _ : state) r = timed_probe(*set.object, o, seconds);
     const ProbingCheckReport c = check_probing(r, *set.object, o, 3);
     if (!c.closed_manifold || c.euler != set.object->euler_characteristic())
         state.SkipWithError("the output does not have the object's topology");
@@ -99,6 +108,32 @@ void BM_Sweep(benchmark::State& state) {
     state.counters["us_per_vertex"] = 1e6 * seconds / n;
 }
 BENCHMARK(BM_Sweep)->DenseRange(0, 4 * kSteps - 1)->Iterations(1)->Unit(benchmark::kSecond);
+
+/// Ablation (spec §5.4): the same runs of the torus and the genus-2 surface at ε_0, ε_3, ε_6
+/// with positioning via ∂Ω instead of through lowest common ancestors.
+struct AblationRow {
+    std::string surface;
+    double eps = 0;
+    ProbingReport report;
+    double seconds = 0;
+};
+std::vector<AblationRow>& ablation() {
+    static std::vector<AblationRow> r;
+    return r;
+}
+void BM_BoundaryPositioning(benchmark::State& state) {
+    const std::size_t s = 2 + static_cast<std::size_t>(state.range(0)) / 3;
+    const int k = 3 * static_cast<int>(state.range(0) % 3);
+    const ProbeSetup& set = setup(s);
+    ProbingOptions o = sweep_options(set, eps_of(s, k));
+    o.positioning = ProbingPositioning::Boundary;
+    ProbingResult r;
+    double seconds = 0;
+    for (auto _ : state) r = timed_probe(*set.object, o, seconds);
+    ablation().push_back({surfaces()[s].name, o.eps, r.report, seconds});
+    state.counters["N"] = double(r.report.vertices);
+}
+BENCHMARK(BM_BoundaryPositioning)->DenseRange(0, 5)->Iterations(1)->Unit(benchmark::kSecond);
 
 /// Least-squares slope of log y against log x.
 double slope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -148,6 +183,16 @@ void summary(const bench::RecordingReporter&) {
     }
     std::printf("(N log N has exponent about 1.1 over this range; the paper: probes O(N log N), cells O(N log N), "
                 "detection O(N log N), positioning O(N^2 log N), Hausdorff O(eps^2).)\n");
+    std::printf("\nPositioning through lowest common ancestors (the sweep's runs) vs via the boundary of Omega\n");
+    std::printf("%-10s %9s %8s %14s %14s %12s %12s %10s\n", "surface", "eps", "N", "pos. edges lca", "pos. edges bnd",
+                "path lca/bnd", "ext. lca/bnd", "time ratio");
+    for (const AblationRow& b : ablation())
+        for (const Row& r : rows())
+            if (r.surface == b.surface && r.eps == b.eps)
+                std::printf("%-10s %9.5f %8zu %14zu %14zu %12.3f %12.3f %10.3f\n", r.surface.c_str(), r.eps,
+                            r.report.vertices, r.report.positioning_edges, b.report.positioning_edges,
+                            r.report.path_length / b.report.path_length,
+                            r.report.exterior_path_length / b.report.exterior_path_length, r.seconds / b.seconds);
     if (const char* csv = std::getenv("DYNMESH_SWEEP_CSV")) {
         std::ofstream out(csv);
         out << "surface,eps,guaranteed,vertices,probes,probes_bootstrap,cells_created,nodes_retained,"

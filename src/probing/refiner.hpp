@@ -19,6 +19,7 @@
 #include "dynmesh/error.hpp"
 #include "dynmesh/probing/device.hpp"
 #include "dynmesh/probing/refine.hpp"
+#include "path_forest.hpp"
 #include "probe_common.hpp"
 #include "refiner_types.hpp"
 
@@ -151,10 +152,29 @@ private:
         climb_out();
         if (!(device_.position() == p)) device_.move_exterior(p);
     }
-    /// Positioning: brings the device to the in-Ω active node u (via ∂Ω).
+    /// Positioning: brings the device to the in-Ω active node u: through the lowest common
+    /// ancestor when the device sits on a node of u's path tree (ProbingPositioning::Lca), via
+    /// ∂Ω otherwise.
     void go_to_node(std::uint32_t u) {
         if (at_node_ == u) return;
         const Node& n = nodes_[u];
+        if (o_.positioning == ProbingPositioning::Lca && at_node_ != kNoNode && nodes_[at_node_].top == n.top) {
+            const std::uint32_t l = lowest_common_ancestor(nodes_, at_node_, u);
+            const Node& a = nodes_[at_node_];
+            const Node& L = nodes_[l];
+            rep_.positioning_edges += (a.depth - L.depth) + (n.depth - L.depth);
+            if (walk_) {
+                for (std::uint32_t x = at_node_; x != l; x = nodes_[x].prev) device_.move_to(nodes_[x].entry);
+                chain_.clear();
+                for (std::uint32_t x = u; x != l; x = nodes_[x].prev) chain_.push_back(x);
+                for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) device_.move_to(nodes_[*it].pos);
+            } else {
+                device_.retrace(L.pos, a.depth - L.depth, std::max(0.0, a.path_len - L.path_len));
+                device_.retrace(n.pos, n.depth - L.depth, std::max(0.0, n.path_len - L.path_len));
+            }
+            at_node_ = u;
+            return;
+        }
         exterior_to(nodes_[n.top].entry);
         rep_.positioning_edges += n.depth;
         if (walk_) {
@@ -433,6 +453,7 @@ private:
             n.entry = r.s;
             n.depth = pu.root() ? 1 : pu.depth + 1;
             n.top = pu.root() ? w : pu.top;
+            n.jump = pu.root() ? w : skew_jump(nodes_, u);
             n.path_len = (pu.root() ? 0 : pu.path_len) + distance(n.pos, r.s);
             ++rep_.activations;
             ++rep_.detection_edges;

@@ -43,6 +43,9 @@ struct Node {
     std::uint32_t prev = kNoNode;   ///< self for roots; kNoNode while inactive
     std::uint32_t top = kNoNode;    ///< the chain's first in-Ω node (whose entry is on ∂Ω)
     std::uint32_t depth = 0;        ///< segments from ∂Ω along the chain
+    /// An in-Ω ancestor (itself for a top): the skew-binary jump pointer that finds ancestors
+    /// and lowest common ancestors in O(log depth) steps with one pointer per node.
+    std::uint32_t jump = kNoNode;
     bool infinite = false;
     bool in_omega = false;
     bool alive = true;

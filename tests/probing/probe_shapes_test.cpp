@@ -185,6 +185,28 @@ ProbingOptions coarse_torus_options(const TorusOracle& torus) {
     return o;
 }
 
+/// Spec §3.5, §5.4: positioning through the lowest common ancestor and via ∂Ω move the device
+/// differently (both checked by the safety monitor, which walks every segment) but probe the
+/// same edges from the same places, so they give the same sample; the LCA travels less.
+TEST(ProbeShapes, LcaAndBoundaryPositioningGiveTheSameMesh) {
+    const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35));
+    ProbingOptions o = coarse_torus_options(torus);
+    o.ground_truth = &torus;
+    const ProbingResult lca = probe_surface(torus, o);
+    o.positioning = ProbingPositioning::Boundary;
+    const ProbingResult boundary = probe_surface(torus, o);
+    EXPECT_TRUE(lca.problems.empty()) << lca.problems.front();
+    EXPECT_TRUE(boundary.problems.empty()) << boundary.problems.front();
+    EXPECT_EQ(lca.sample, boundary.sample);
+    EXPECT_EQ(lca.mesh.triangles, boundary.mesh.triangles);
+    EXPECT_EQ(lca.report.probes, boundary.report.probes);
+    EXPECT_EQ(lca.report.detection_edges, boundary.report.detection_edges);
+    EXPECT_LT(lca.report.positioning_edges, boundary.report.positioning_edges);
+    EXPECT_LT(lca.report.path_length, boundary.report.path_length);
+    EXPECT_LE(lca.report.exterior_path_length, boundary.report.exterior_path_length);
+    EXPECT_GT(lca.report.segments_checked, 0u);
+}
+
 /// Spec §7 test 7: two runs give the same sample, facets and counters.
 TEST(ProbeShapes, RunsAreDeterministic) {
     const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35));

@@ -46,6 +46,12 @@ enum class ProbingMode {
     Omniscient,  ///< every Voronoi edge tested from anywhere; no motion (baseline)
 };
 
+/// How the device gets from the node it sits on to the next node it must probe from (spec §3.5).
+enum class ProbingPositioning {
+    Lca,       ///< within one path tree: up to the two nodes' lowest common ancestor and down
+    Boundary,  ///< always up to ∂Ω, along ∂Ω, and down (the simple variant, for ablations)
+};
+
 struct ProbingSnapshot;
 struct ProbingProgress {
     std::size_t insertions = 0;  ///< samples inserted by refinement so far
@@ -64,6 +70,7 @@ struct ProbingOptions {
     bool allow_unguaranteed = false;      ///< accept ε ≥ 0.091·ε_S
     std::size_t max_points = 2'000'000;   ///< cap on |E| (InvalidInput beyond)
     ProbingMode mode = ProbingMode::Device;
+    ProbingPositioning positioning = ProbingPositioning::Lca;
     /// Device mode: the safety monitor (checks only, never the algorithm): every segment the
     /// device travels is verified free, every exterior path outside Ω; a violation throws
     /// UnsafeMove naming the segment. Omniscient mode: required, tells which end of an edge
