@@ -1,0 +1,75 @@
+#pragma once
+/// \file The skin of a set of weighted points as the level set of one C¹ function
+/// (specs/skin-surfaces.md §1.2–§1.6, with §8 correction 4 on the bounding points):
+///
+///     Φ(x) = min over balls b in conv(B) of ‖x − z_b‖²/s − w_b,
+///
+/// equal on each mixed cell μ_δ = (1−s)·δ ⊕ s·ν_δ of the regular triangulation to the quadric
+/// Φ_δ(x) = ‖u_ν‖²/s − ‖u_δ‖²/(1−s) + W_δ, u = x − z_δ split along aff δ (u_δ) and its orthogonal
+/// complement (u_ν). The skin at growth time t (every weight + t) is Φ = t; inside is Φ < t.
+///
+/// Six bounding points of weight −1 are added far enough from the balls (D = max(CGAL's distance,
+/// half-diagonal + 2·max √(w/s) + 1) from the box centre) that Φ near the balls is that of the
+/// balls alone, and so that any input (one ball, coplanar centres) has a 3D triangulation.
+///
+/// Locating the mixed cell of a point scans every simplex (O(n) per query): this evaluator is
+/// the reference the tests and the static mesher check against.
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/skin/molecule.hpp"
+
+namespace dynmesh {
+
+/// A simplex δ of the regular triangulation with what its mixed cell needs.
+struct SkinSimplex {
+    std::array<int, 4> vertices{-1, -1, -1, -1};  ///< indices into SkinFunction::balls(), dim + 1 of them
+    int dim = 0;                                  ///< 0 vertex, 1 edge, 2 triangle, 3 tetrahedron
+    Point3 z{};                                   ///< the orthocentre z_δ (equal power to every vertex)
+    double W = 0;                                 ///< the ortho-weight ‖z_δ − z_i‖² − w_i
+    std::vector<int> link;                        ///< the finite vertices j with δ ∪ {j} a simplex
+};
+
+struct SkinEvaluation {
+    double value = 0;        ///< Φ(x)
+    Vec3 gradient{};         ///< ∇Φ(x) = 2u_ν/s − 2u_δ/(1−s)
+    double rho = 0;          ///< the length scale 1/κ, κ the maximum normal curvature of the level set through x
+    std::size_t simplex = 0; ///< the index of δ with x in μ_δ
+};
+
+class SkinFunction {
+public:
+    /// \throw InvalidInput when s is not in (0, 1), there is no ball, or a centre or weight is
+    ///        not finite.
+    SkinFunction(std::vector<WeightedPoint> balls, double s);
+
+    [[nodiscard]] SkinEvaluation evaluate(const Point3& x) const;
+    [[nodiscard]] double value(const Point3& x) const { return evaluate(x).value; }
+    /// Is x in the mixed cell of simplex k (up to a relative tolerance of 1e-12)?
+    [[nodiscard]] bool in_mixed_cell(std::size_t k, const Point3& x) const;
+    /// Φ_δ, ∇Φ_δ and ϱ of simplex k's quadric at x (anywhere: the patch extended).
+    [[nodiscard]] SkinEvaluation evaluate_in(std::size_t k, const Point3& x) const;
+
+    [[nodiscard]] double shrink() const { return s_; }
+    /// The input balls followed by the six bounding points.
+    [[nodiscard]] const std::vector<WeightedPoint>& balls() const { return balls_; }
+    [[nodiscard]] std::size_t input_balls() const { return n_input_; }
+    [[nodiscard]] const std::vector<SkinSimplex>& simplices() const { return simplices_; }
+
+private:
+    /// The violation of x's membership in μ_k (≤ 0 inside), relative to the simplex's scale.
+    [[nodiscard]] double violation(std::size_t k, const Point3& x) const;
+
+    std::vector<WeightedPoint> balls_;
+    std::size_t n_input_ = 0;
+    double s_ = 0.5;
+    double scale_ = 1;
+    std::vector<SkinSimplex> simplices_;
+    /// Per simplex, an orthonormal basis of the directions of aff δ (dim vectors).
+    std::vector<std::array<Vec3, 3>> basis_;
+};
+
+}  // namespace dynmesh

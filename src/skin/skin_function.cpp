@@ -1,0 +1,245 @@
+#include "dynmesh/skin/skin_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Regular_triangulation_cell_base_3.h>
+#include <CGAL/Regular_triangulation_vertex_base_3.h>
+#include <CGAL/Triangulation_data_structure_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include "dynmesh/error.hpp"
+
+namespace dynmesh {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb0 = CGAL::Regular_triangulation_vertex_base_3<K>;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K, Vb0>;
+using Cb = CGAL::Regular_triangulation_cell_base_3<K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using RT = CGAL::Regular_triangulation_3<K, Tds>;
+
+/// Solves the d×d symmetric system G·m = r (d ≤ 3) by Gaussian elimination with partial
+/// pivoting; false when G is singular to working precision.
+bool solve_small(int d, double G[3][3], double r[3], double m[3]) {
+    double a[3][4];
+    for (int i = 0; i < d; ++i) {
+        for (int j = 0; j < d; ++j) a[i][j] = G[i][j];
+        a[i][d] = r[i];
+    }
+    double norm = 0;
+    for (int i = 0; i < d; ++i)
+        for (int j = 0; j < d; ++j) norm = std::max(norm, std::fabs(a[i][j]));
+    for (int c = 0; c < d; ++c) {
+        int p = c;
+        for (int i = c + 1; i < d; ++i)
+            if (std::fabs(a[i][c]) > std::fabs(a[p][c])) p = i;
+        if (!(std::fabs(a[p][c]) > 1e-14 * norm)) return false;
+        for (int j = 0; j <= d; ++j) std::swap(a[c][j], a[p][j]);
+        for (int i = c + 1; i < d; ++i) {
+            const double f = a[i][c] / a[c][c];
+            for (int j = c; j <= d; ++j) a[i][j] -= f * a[c][j];
+        }
+    }
+    for (int i = d - 1; i >= 0; --i) {
+        double v = a[i][d];
+        for (int j = i + 1; j < d; ++j) v -= a[i][j] * m[j];
+        m[i] = v / a[i][i];
+    }
+    return true;
+}
+
+double power(const WeightedPoint& b, const Point3& x) { return sqnorm(x - b.center) - b.weight; }
+
+}  // namespace
+
+SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(std::move(balls)), s_(s) {
+    DYNMESH_CHECK(std::isfinite(s) && s > 0 && s < 1, "SkinFunction: the shrink factor must be in (0, 1)");
+    DYNMESH_CHECK(!balls_.empty(), "SkinFunction: no ball");
+    n_input_ = balls_.size();
+    Point3 lo = balls_[0].center, hi = balls_[0].center;
+    double w_max = 0;
+    for (const WeightedPoint& b : balls_) {
+        DYNMESH_CHECK(is_finite(b.center) && std::isfinite(b.weight), "SkinFunction: a centre or a weight is not finite");
+        lo = {std::min(lo.x, b.center.x), std::min(lo.y, b.center.y), std::min(lo.z, b.center.z)};
+        hi = {std::max(hi.x, b.center.x), std::max(hi.y, b.center.y), std::max(hi.z, b.center.z)};
+        w_max = std::max(w_max, b.weight);
+    }
+    // Bounding points (§1.5 with §8 correction 4): CGAL's distance, or far enough that every
+    // ball–bounding-point distance is at least 2r/s.
+    const Vec3 ext = hi - lo;
+    const double half_diagonal = 0.5 * norm(ext);
+    const double d_cgal = (ext.x + ext.y + ext.z + std::sqrt(w_max) + 0.001) / s;
+    const double D = std::max(d_cgal, half_diagonal + 2 * std::sqrt(w_max / s) + 1);
+    const Point3 c = lo + 0.5 * ext;
+    for (int k = 0; k < 3; ++k)
+        for (double sign : {-1.0, 1.0}) {
+            Vec3 e{0, 0, 0};
+            (k == 0 ? e.x : k == 1 ? e.y : e.z) = sign * D;
+            balls_.push_back({c + e, -1});
+        }
+    scale_ = std::max({2 * half_diagonal, std::sqrt(w_max), 1e-300});
+
+    std::vector<std::pair<K::Weighted_point_3, int>> input;
+    input.reserve(balls_.size());
+    for (std::size_t i = 0; i < balls_.size(); ++i) {
+        const Point3& p = balls_[i].center;
+        input.emplace_back(K::Weighted_point_3(K::Point_3(p.x, p.y, p.z), balls_[i].weight), int(i));
+    }
+    RT rt(input.begin(), input.end());
+    DYNMESH_CHECK(rt.dimension() == 3, "SkinFunction: the regular triangulation is not 3-dimensional");
+
+    // Every finite simplex is a face of a finite cell; its link gathers the cells' other vertices.
+    std::map<std::array<int, 4>, std::size_t> index;
+    std::vector<std::set<int>> links;
+    for (auto cell = rt.finite_cells_begin(); cell != rt.finite_cells_end(); ++cell) {
+        int v[4];
+        for (int i = 0; i < 4; ++i) v[i] = cell->vertex(i)->info();
+        for (int mask = 1; mask < 16; ++mask) {
+            std::array<int, 4> key{-1, -1, -1, -1};
+            int n = 0;
+            for (int i = 0; i < 4; ++i)
+                if (mask & (1 << i)) key[std::size_t(n++)] = v[i];
+            for (int i = 1; i < n; ++i)  // insertion sort of at most four indices
+                for (int j = i; j > 0 && key[std::size_t(j - 1)] > key[std::size_t(j)]; --j)
+                    std::swap(key[std::size_t(j - 1)], key[std::size_t(j)]);
+            auto [it, fresh] = index.emplace(key, simplices_.size());
+            if (fresh) {
+                SkinSimplex sx;
+                sx.vertices = key;
+                sx.dim = n - 1;
+                simplices_.push_back(sx);
+                links.emplace_back();
+            }
+            for (int i = 0; i < 4; ++i)
+                if (!(mask & (1 << i))) links[it->second].insert(v[i]);
+        }
+    }
+    basis_.resize(simplices_.size());
+    for (std::size_t k = 0; k < simplices_.size(); ++k) {
+        SkinSimplex& sx = simplices_[k];
+        sx.link.assign(links[k].begin(), links[k].end());
+        const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
+        const int d = sx.dim;
+        Vec3 e[3];
+        double G[3][3], r[3], m[3] = {0, 0, 0};
+        for (int i = 0; i < d; ++i) {
+            const WeightedPoint& bi = balls_[std::size_t(sx.vertices[std::size_t(i + 1)])];
+            e[i] = bi.center - b0.center;
+            r[i] = 0.5 * (sqnorm(e[i]) - bi.weight + b0.weight);
+        }
+        for (int i = 0; i < d; ++i)
+            for (int j = 0; j < d; ++j) G[i][j] = dot(e[i], e[j]);
+        if (d > 0 && !solve_small(d, G, r, m))
+            throw InternalError("SkinFunction: a degenerate simplex in the regular triangulation");
+        Point3 z = b0.center;
+        for (int i = 0; i < d; ++i) z = z + m[i] * e[i];
+        sx.z = z;
+        sx.W = power(b0, z);
+        // Orthonormal basis of aff δ's directions (Gram–Schmidt).
+        for (int i = 0; i < d; ++i) {
+            Vec3 v = e[i];
+            for (int j = 0; j < i; ++j) v = v - dot(v, basis_[k][std::size_t(j)]) * basis_[k][std::size_t(j)];
+            basis_[k][std::size_t(i)] = v / norm(v);
+        }
+    }
+}
+
+double SkinFunction::violation(std::size_t k, const Point3& x) const {
+    const SkinSimplex& sx = simplices_[k];
+    const Vec3 u = x - sx.z;
+    Vec3 ud{0, 0, 0};
+    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 un = u - ud;
+    double worst = -std::numeric_limits<double>::infinity();
+    const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
+    if (sx.dim > 0) {
+        // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge.
+        const Point3 p = sx.z + ud / (1 - s_);
+        Vec3 e[3];
+        double G[3][3], r[3], m[3] = {0, 0, 0}, longest = 0;
+        for (int i = 0; i < sx.dim; ++i) {
+            e[i] = balls_[std::size_t(sx.vertices[std::size_t(i + 1)])].center - b0.center;
+            r[i] = dot(e[i], p - b0.center);
+            longest = std::max(longest, norm(e[i]));
+        }
+        for (int i = 0; i < sx.dim; ++i)
+            for (int j = 0; j < sx.dim; ++j) G[i][j] = dot(e[i], e[j]);
+        solve_small(sx.dim, G, r, m);
+        double l0 = 1;
+        for (int i = 0; i < sx.dim; ++i) {
+            l0 -= m[i];
+            worst = std::max(worst, -m[i] * longest);
+        }
+        worst = std::max(worst, -l0 * longest);
+    }
+    // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex
+    // (signed distance to that plane).
+    const Point3 q = sx.z + un / s_;
+    const double p0 = power(b0, q);
+    for (int j : sx.link) {
+        const WeightedPoint& bj = balls_[std::size_t(j)];
+        const double gap = 2 * norm(bj.center - b0.center);
+        worst = std::max(worst, (p0 - power(bj, q)) / gap);
+    }
+    return worst;
+}
+
+bool SkinFunction::in_mixed_cell(std::size_t k, const Point3& x) const {
+    return violation(k, x) <= 1e-12 * scale_;
+}
+
+SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
+    const SkinSimplex& sx = simplices_[k];
+    const Vec3 u = x - sx.z;
+    Vec3 ud{0, 0, 0};
+    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 un = u - ud;
+    SkinEvaluation ev;
+    ev.simplex = k;
+    ev.value = sqnorm(un) / s_ - sqnorm(ud) / (1 - s_) + sx.W;
+    ev.gradient = (2 / s_) * un - (2 / (1 - s_)) * ud;
+    // Φ_δ = uᵀAu + W with A = P_ν/s − P_δ/(1−s): κ = max |tᵀAt| over unit tangents / ‖Au‖.
+    const auto A = [&](const Vec3& v) {
+        Vec3 vd{0, 0, 0};
+        for (int i = 0; i < sx.dim; ++i) vd = vd + dot(v, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+        return (1 / s_) * (v - vd) - (1 / (1 - s_)) * vd;
+    };
+    const Vec3 g = A(u);
+    const double gn = norm(g);
+    if (!(gn > 0)) return ev;  // at z_δ of a critical simplex: infinite curvature, ϱ = 0
+    const Vec3 n = g / gn;
+    const Vec3 a = std::fabs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 t1 = normalized(a - dot(a, n) * n);
+    const Vec3 t2 = cross(n, t1);
+    const double m11 = dot(t1, A(t1)), m12 = dot(t1, A(t2)), m22 = dot(t2, A(t2));
+    const double mean = 0.5 * (m11 + m22), rad = std::hypot(0.5 * (m11 - m22), m12);
+    const double kappa = std::max(std::fabs(mean + rad), std::fabs(mean - rad)) / gn;
+    ev.rho = kappa > 0 ? 1 / kappa : std::numeric_limits<double>::infinity();
+    return ev;
+}
+
+SkinEvaluation SkinFunction::evaluate(const Point3& x) const {
+    DYNMESH_CHECK(is_finite(x), "SkinFunction::evaluate: the point is not finite");
+    std::size_t best = 0;
+    double best_violation = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < simplices_.size(); ++k) {
+        const double v = violation(k, x);
+        if (v <= 1e-12 * scale_) return evaluate_in(k, x);
+        if (v < best_violation) {
+            best_violation = v;
+            best = k;
+        }
+    }
+    return evaluate_in(best, x);
+}
+
+}  // namespace dynmesh
