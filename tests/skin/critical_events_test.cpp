@@ -67,6 +67,26 @@ TEST(CriticalEvents, TheFourBallExample) {
     EXPECT_EQ(chi_c, -4);
 }
 
+/// Three equal balls, one just off the middle of the segment between the other two: the long
+/// edge (its midpoint is covered by the third ball) and the obtuse triangle (its orthocentre lies
+/// outside it) are attached, not critical, though their W is below 0: 3 births, 2 necks, χ = 2.
+TEST(CriticalEvents, AttachedSimplicesAreNotEvents) {
+    const double w = 20;
+    const SkinFunction phi({{{-2, 0, 0}, w}, {{2, 0, 0}, w}, {{0, 0.5, 0}, w}}, 0.5);
+    int uncritical_below_zero = 0;
+    for (const SkinSimplex& sx : phi.simplices())
+        if (sx.W <= 0 && sx.dim > 0 && std::size_t(sx.vertices[std::size_t(sx.dim)]) < 3) ++uncritical_below_zero;
+    EXPECT_EQ(uncritical_below_zero, 4);  // three edges and the triangle have W <= 0
+    const auto ev = critical_events(phi, -100);
+    const auto n = count_by_kind(ev);
+    EXPECT_EQ(n.at(Kind::Birth), 3);
+    EXPECT_EQ(n.at(Kind::Neck), 2);
+    EXPECT_EQ(n.count(Kind::TunnelClose), 0u);
+    for (const SkinEvent& e : ev) {
+        if (e.kind == Kind::Neck) EXPECT_NEAR(e.time, 4.25 / 4 - w, 1e-12);
+    }
+}
+
 /// A ring of 8 balls: 8 births, 8 necks, and no tunnel closure by t = 0: a torus (χ 0).
 TEST(CriticalEvents, RingIsATorus) {
     std::vector<WeightedPoint> B;
