@@ -83,7 +83,9 @@ TEST(CriticalEvents, AttachedSimplicesAreNotEvents) {
     EXPECT_EQ(n.at(Kind::Neck), 2);
     EXPECT_EQ(n.count(Kind::TunnelClose), 0u);
     for (const SkinEvent& e : ev) {
-        if (e.kind == Kind::Neck) EXPECT_NEAR(e.time, 4.25 / 4 - w, 1e-12);
+        if (e.kind == Kind::Neck) {
+            EXPECT_NEAR(e.time, 4.25 / 4 - w, 1e-12);
+        }
     }
 }
 
