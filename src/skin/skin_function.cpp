@@ -227,6 +227,30 @@ SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
     return ev;
 }
 
+Point3 SkinFunction::flow_in_cell(std::size_t k, const Point3& x0, double t) const {
+    DYNMESH_CHECK(s_ == 0.5, "SkinFunction::flow_in_cell: the closed-form flow needs s = 1/2");
+    DYNMESH_CHECK(k < simplices_.size() && is_finite(x0) && std::isfinite(t), "SkinFunction::flow_in_cell: bad arguments");
+    const SkinSimplex& sx = simplices_[k];
+    const Vec3 u = x0 - sx.z;
+    Vec3 ud{0, 0, 0};
+    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 un = u - ud;
+    const double a0 = norm(un), b0 = norm(ud);
+    const double D = 0.5 * (t - sx.W), ab = a0 * b0;
+    const double root = std::sqrt(D * D + 4 * ab * ab);
+    // a² = (D + root)/2 and b² = (root − D)/2; the smaller of the two from the product when
+    // D is large, to avoid cancellation.
+    double a2 = D >= 0 ? 0.5 * (D + root) : 0.0, b2 = D < 0 ? 0.5 * (root - D) : 0.0;
+    if (D >= 0) b2 = a2 > 0 ? ab * ab / a2 : 0.0;
+    else a2 = ab * ab / b2;
+    DYNMESH_CHECK(a0 > 0 || a2 == 0, "SkinFunction::flow_in_cell: the point is on the quadric's axis and cannot reach that level");
+    DYNMESH_CHECK(b0 > 0 || b2 == 0, "SkinFunction::flow_in_cell: the point is on the quadric's axis and cannot reach that level");
+    Point3 x = sx.z;
+    if (a0 > 0) x = x + (std::sqrt(a2) / a0) * un;
+    if (b0 > 0) x = x + (std::sqrt(b2) / b0) * ud;
+    return x;
+}
+
 SkinEvaluation SkinFunction::evaluate(const Point3& x) const {
     DYNMESH_CHECK(is_finite(x), "SkinFunction::evaluate: the point is not finite");
     std::size_t best = 0;

@@ -189,6 +189,40 @@ TEST(SkinFunction, LengthScaleIsLipschitzAndTheInverseCurvature) {
         }
 }
 
+/// §6.1 S5: the closed-form trajectory stays on the level t of its quadric and matches RK4
+/// integration of v = ∇Φ/‖∇Φ‖² (in the same cell's quadric).
+TEST(SkinFunction, ClosedFormFlowMatchesRungeKutta) {
+    Rng rng(21);
+    const SkinFunction phi(random_balls(rng, 6), 0.5);
+    int runs = 0;
+    for (int q = 0; q < 300; ++q) {
+        const Point3 x0{rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)};
+        const SkinEvaluation e0 = phi.evaluate(x0);
+        const std::size_t k = e0.simplex;
+        if (e0.rho < 0.2) continue;  // keep away from the quadric's centre, where the speed blows up
+        const double t0 = e0.value, t1 = t0 + rng.uniform(-0.5, 0.5) * e0.rho * e0.rho;
+        const Point3 x1 = phi.flow_in_cell(k, x0, t1);
+        EXPECT_NEAR(phi.evaluate_in(k, x1).value, t1, 1e-12 * (1 + std::fabs(t1) + std::fabs(phi.simplices()[k].W)));
+        // RK4 in t with 2000 steps.
+        const auto v = [&](const Point3& x) {
+            const Vec3 g = phi.evaluate_in(k, x).gradient;
+            return g / sqnorm(g);
+        };
+        Point3 x = x0;
+        const int steps = 2000;
+        const double h = (t1 - t0) / steps;
+        for (int i = 0; i < steps; ++i) {
+            const Vec3 k1 = v(x), k2 = v(x + 0.5 * h * k1), k3 = v(x + 0.5 * h * k2), k4 = v(x + h * k3);
+            x = x + (h / 6) * (k1 + 2 * k2 + 2 * k3 + k4);
+        }
+        EXPECT_LT(distance(x, x1), 1e-8 * (1 + e0.rho)) << q;
+        ++runs;
+    }
+    EXPECT_GT(runs, 100);
+    const SkinFunction other({{{0, 0, 0}, 1}}, 0.3);
+    EXPECT_THROW((void)other.flow_in_cell(0, {1, 0, 0}, 0), InvalidInput);
+}
+
 TEST(SkinFunction, OneBallIsItsShrunkSphereAndInputsAreChecked) {
     // One ball (z, w): Φ = ‖x − z‖²/s − w near it, so the skin at t = 0 is the sphere of radius
     // √(s·w) (the van der Waals sphere when w = r²/s), untouched by the bounding points.

@@ -53,6 +53,14 @@ public:
     /// Φ_δ, ∇Φ_δ and ϱ of simplex k's quadric at x (anywhere: the patch extended).
     [[nodiscard]] SkinEvaluation evaluate_in(std::size_t k, const Point3& x) const;
 
+    /// At s = 1/2: the point x0 moved along the orthogonal trajectory of simplex k's quadric
+    /// (velocity ∇Φ/‖∇Φ‖², so Φ grows at rate 1) from its level Φ_k(x0) to the level t, in
+    /// closed form (§2.3: a·b is conserved and a² − b² = (t − W)/2, with a = ‖u_ν‖, b = ‖u_δ‖).
+    /// Whether the path stays in the mixed cell is the caller's concern.
+    /// \throw InvalidInput when s ≠ 1/2, or x0 lies on an axis of the quadric (a or b zero) and
+    ///        the level t is on the side the radial path cannot reach.
+    [[nodiscard]] Point3 flow_in_cell(std::size_t k, const Point3& x0, double t) const;
+
     [[nodiscard]] double shrink() const { return s_; }
     /// The input balls followed by the six bounding points.
     [[nodiscard]] const std::vector<WeightedPoint>& balls() const { return balls_; }
