@@ -14,8 +14,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// Writes a file into a scratch directory of the running test's own (tests run in parallel
+/// processes; each test's directory is emptied once, when it writes its first file).
 fs::path write_file(const std::string& name, const std::string& text) {
-    const fs::path p = test::scratch_dir("skin_molecule") / name;
+    static std::string current;
+    const std::string test = std::string("skin_molecule_") + testing::UnitTest::GetInstance()->current_test_info()->name();
+    if (test != current) {
+        (void)test::scratch_dir(test);
+        current = test;
+    }
+    const fs::path p = fs::path(DYNMESH_TEST_TMP_DIR) / test / name;
     std::ofstream(p, std::ios::binary) << text;
     return p;
 }
