@@ -71,4 +71,33 @@ std::vector<PointUpdate> read_update_script(const std::filesystem::path& path, i
     return ops;
 }
 
+std::vector<NumberRow> read_four_number_rows(const std::filesystem::path& path, std::string_view layout,
+                                             std::string_view what) {
+    const detail::FileContext ctx(path);
+    const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
+    std::vector<NumberRow> rows;
+    detail::LineReader reader(data);
+    std::string_view line, token;
+    while (reader.next(line)) {
+        const std::string_view body = detail::strip_comment(line);
+        const auto bad = [&] {
+            ctx.fail_line(reader.line_number(), "expected '" + std::string(layout) + "' (four finite numbers), got " +
+                                                    detail::quote_text(body));
+        };
+        detail::Tokens tokens(body);
+        NumberRow row;
+        int k = 0;
+        while (tokens.next(token)) {
+            if (k == 4 || !detail::parse_double(token, row.v[k]) || !std::isfinite(row.v[k])) bad();
+            ++k;
+        }
+        if (k == 0) continue;
+        if (k != 4) bad();
+        row.line = reader.line_number();
+        rows.push_back(row);
+    }
+    if (rows.empty()) ctx.fail("no " + std::string(what) + " in the file");
+    return rows;
+}
+
 }  // namespace dynmesh

@@ -9,6 +9,7 @@
 #include "dynmesh/geometry/format.hpp"
 #include "dynmesh/io/input_file.hpp"
 #include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/io/text_inputs.hpp"
 #include "dynmesh/probing/oracles.hpp"
 #include "dynmesh/probing/oracles2.hpp"
 #include "dynmesh/shapes/surface.hpp"
@@ -39,32 +40,13 @@ void check_extent(const Bbox3& box, const std::string& what) {
 
 std::vector<Ball> read_balls(const std::string& path) {
     const detail::FileContext ctx(path);
-    const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
     std::vector<Ball> balls;
     std::vector<std::size_t> lines;
-    detail::LineReader reader(data);
-    std::string_view line, token;
-    while (reader.next(line)) {
-        const std::string_view body = detail::strip_comment(line);
-        detail::Tokens tokens(body);
-        double v[4];
-        int k = 0;
-        while (tokens.next(token)) {
-            if (k == 4 || !detail::parse_double(token, v[k]) || !std::isfinite(v[k]))
-                ctx.fail_line(reader.line_number(),
-                              "expected 'x y z r' (four finite numbers), got " +
-                                  detail::quote_text(body));
-            ++k;
-        }
-        if (k == 0) continue;
-        if (k != 4)
-            ctx.fail_line(reader.line_number(), "expected 'x y z r' (four finite numbers), got " +
-                                                    detail::quote_text(body));
-        if (!(v[3] > 0)) ctx.fail_line(reader.line_number(), "the radius must be positive");
-        balls.push_back({{v[0], v[1], v[2]}, v[3]});
-        lines.push_back(reader.line_number());
+    for (const NumberRow& row : read_four_number_rows(path, "x y z r", "ball")) {
+        if (!(row.v[3] > 0)) ctx.fail_line(row.line, "the radius must be positive");
+        balls.push_back({{row.v[0], row.v[1], row.v[2]}, row.v[3]});
+        lines.push_back(row.line);
     }
-    if (balls.empty()) ctx.fail("no ball in the file");
     try {
         const BallsOracle check(balls);
     } catch (const InvalidInput& e) {

@@ -9,6 +9,7 @@
 #include "../io/io_common.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/input_file.hpp"
+#include "dynmesh/io/text_inputs.hpp"
 
 namespace dynmesh {
 
@@ -18,35 +19,6 @@ std::string upper(std::string_view s) {
     std::string out(s);
     for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     return out;
-}
-
-/// Reads `x y z value` lines (XYZR, weighted points): calls add(v, line) for each.
-template <class Add>
-void read_four_columns(const std::filesystem::path& path, const char* layout, Add&& add) {
-    const detail::FileContext ctx(path);
-    const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
-    detail::LineReader reader(data);
-    std::string_view line, token;
-    std::size_t count = 0;
-    while (reader.next(line)) {
-        const std::string_view body = detail::strip_comment(line);
-        detail::Tokens tokens(body);
-        double v[4];
-        int k = 0;
-        while (tokens.next(token)) {
-            if (k == 4 || !detail::parse_double(token, v[k]) || !std::isfinite(v[k]))
-                ctx.fail_line(reader.line_number(), std::string("expected '") + layout +
-                                                        "' (four finite numbers), got " + detail::quote_text(body));
-            ++k;
-        }
-        if (k == 0) continue;
-        if (k != 4)
-            ctx.fail_line(reader.line_number(), std::string("expected '") + layout + "' (four finite numbers), got " +
-                                                    detail::quote_text(body));
-        add(v, reader.line_number(), ctx);
-        ++count;
-    }
-    if (count == 0) ctx.fail("no atom in the file");
 }
 
 }  // namespace
@@ -127,19 +99,19 @@ RadiusTable RadiusTable::read_csv(const std::filesystem::path& path, double fall
 // ---- readers --------------------------------------------------------------------------------
 
 std::vector<Atom> read_xyzr(const std::filesystem::path& path) {
+    const detail::FileContext ctx(path);
     std::vector<Atom> atoms;
-    read_four_columns(path, "x y z r", [&](const double* v, std::size_t line, const detail::FileContext& ctx) {
-        if (!(v[3] > 0)) ctx.fail_line(line, "the radius must be positive");
-        atoms.push_back({{v[0], v[1], v[2]}, v[3], "", line});
-    });
+    for (const NumberRow& row : read_four_number_rows(path, "x y z r", "atom")) {
+        if (!(row.v[3] > 0)) ctx.fail_line(row.line, "the radius must be positive");
+        atoms.push_back({{row.v[0], row.v[1], row.v[2]}, row.v[3], "", row.line});
+    }
     return atoms;
 }
 
 std::vector<WeightedPoint> read_weighted_points(const std::filesystem::path& path) {
     std::vector<WeightedPoint> points;
-    read_four_columns(path, "x y z w", [&](const double* v, std::size_t, const detail::FileContext&) {
-        points.push_back({{v[0], v[1], v[2]}, v[3]});
-    });
+    for (const NumberRow& row : read_four_number_rows(path, "x y z w", "weighted point"))
+        points.push_back({{row.v[0], row.v[1], row.v[2]}, row.v[3]});
     return points;
 }
 

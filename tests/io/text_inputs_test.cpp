@@ -76,5 +76,23 @@ TEST(UpdateScript, RefusesDevicesInsteadOfReadingForever) {
               std::string::npos);
 }
 
+TEST(FourNumberRows, ReadsRowsWithTheirLinesAndNamesBadOnes) {
+    const auto dir = scratch_dir("four_number_rows");
+    write_bytes(dir / "ok.txt", "# balls\n0 0 0 1\n\n1.5 -2 3e-1 0.25  # second\n");
+    const auto rows = read_four_number_rows(dir / "ok.txt", "x y z r", "ball");
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[1].line, 4u);
+    EXPECT_EQ(rows[1].v[2], 0.3);
+    EXPECT_EQ(rows[1].v[3], 0.25);
+    for (const char* bad : {"0 0 0\n", "0 0 0 1 2\n", "0 0 x 1\n", "0 0 inf 1\n"}) {
+        write_bytes(dir / "bad.txt", std::string("1 1 1 1\n") + bad);
+        const std::string msg = io_error_of([&] { (void)read_four_number_rows(dir / "bad.txt", "x y z w", "point"); });
+        EXPECT_NE(msg.find("bad.txt:2: expected 'x y z w'"), std::string::npos) << msg;
+    }
+    write_bytes(dir / "none.txt", "# nothing\n\n");
+    EXPECT_NE(io_error_of([&] { (void)read_four_number_rows(dir / "none.txt", "x y z r", "ball"); }).find("no ball in the file"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace dynmesh::test

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
@@ -37,5 +38,18 @@ struct PointUpdate {
 ///        that is not a finite number. InvalidInput for a dimension other than 2 or 3.
 [[nodiscard]] std::vector<PointUpdate> read_update_script(const std::filesystem::path& path,
                                                           int dimension);
+
+/// One row of a table of four numbers, with its line.
+struct NumberRow {
+    double v[4]{};
+    std::size_t line = 0;  ///< 1-based line of the file
+};
+
+/// Reads rows of exactly four finite numbers (balls `x y z r`, weighted points `x y z w`);
+/// `layout` names the columns in messages ("x y z r"), `what` the rows ("ball", "atom").
+/// \throw IoError "<file>:<line>: expected '<layout>' (four finite numbers), got '...'" for a
+///        bad row, "<file>: no <what> in the file" for a file without rows.
+[[nodiscard]] std::vector<NumberRow> read_four_number_rows(const std::filesystem::path& path,
+                                                           std::string_view layout, std::string_view what);
 
 }  // namespace dynmesh
