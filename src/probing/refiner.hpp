@@ -137,14 +137,7 @@ private:
     /// lengths by the device. The device is at the in-Ω node at_node_, or outside Ω.
     void climb_out() {
         if (at_node_ == kNoNode) return;
-        const Node& a = nodes_[at_node_];
-        rep_.positioning_edges += a.depth;
-        if (walk_) {
-            for (std::uint32_t u = at_node_; !nodes_[u].root(); u = nodes_[u].prev)
-                device_.move_to(nodes_[u].entry);
-        } else {
-            device_.retrace(nodes_[a.top].entry, a.depth, a.path_len);
-        }
+        climb_to(nodes_[nodes_[at_node_].top].prev);
         at_node_ = kNoNode;
     }
     /// Travel outside Ω to p (on or outside ∂Ω).
@@ -158,31 +151,39 @@ private:
     void go_to_node(std::uint32_t u) {
         if (at_node_ == u) return;
         const Node& n = nodes_[u];
+        std::uint32_t l = nodes_[n.top].prev;  // the root above u's tree: via ∂Ω
         if (o_.positioning == ProbingPositioning::Lca && at_node_ != kNoNode && nodes_[at_node_].top == n.top) {
-            const std::uint32_t l = lowest_common_ancestor(nodes_, at_node_, u);
-            const Node& a = nodes_[at_node_];
-            const Node& L = nodes_[l];
-            rep_.positioning_edges += (a.depth - L.depth) + (n.depth - L.depth);
-            if (walk_) {
-                for (std::uint32_t x = at_node_; x != l; x = nodes_[x].prev) device_.move_to(nodes_[x].entry);
-                chain_.clear();
-                for (std::uint32_t x = u; x != l; x = nodes_[x].prev) chain_.push_back(x);
-                for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) device_.move_to(nodes_[*it].pos);
-            } else {
-                device_.retrace(L.pos, a.depth - L.depth, std::max(0.0, a.path_len - L.path_len));
-                device_.retrace(n.pos, n.depth - L.depth, std::max(0.0, n.path_len - L.path_len));
-            }
-            at_node_ = u;
-            return;
+            l = lowest_common_ancestor(nodes_, at_node_, u);
+            climb_to(l);
+        } else {
+            exterior_to(nodes_[n.top].entry);
         }
-        exterior_to(nodes_[n.top].entry);
-        rep_.positioning_edges += n.depth;
+        descend_from(l, u);
+    }
+    /// Up the device's path tree from at_node_ to its ancestor l (the root above the tree: out to
+    /// the top's entry on ∂Ω). Roots have depth and path length 0.
+    void climb_to(std::uint32_t l) {
+        const Node& a = nodes_[at_node_];
+        const Node& L = nodes_[l];
+        rep_.positioning_edges += a.depth - L.depth;
+        if (walk_) {
+            for (std::uint32_t x = at_node_; x != l; x = nodes_[x].prev) device_.move_to(nodes_[x].entry);
+        } else {
+            device_.retrace(L.root() ? nodes_[a.top].entry : L.pos, a.depth - L.depth,
+                            std::max(0.0, a.path_len - L.path_len));
+        }
+    }
+    /// Down u's path tree from its ancestor l (where the device is) to u.
+    void descend_from(std::uint32_t l, std::uint32_t u) {
+        const Node& n = nodes_[u];
+        const Node& L = nodes_[l];
+        rep_.positioning_edges += n.depth - L.depth;
         if (walk_) {
             chain_.clear();
-            for (std::uint32_t a = u; !nodes_[a].root(); a = nodes_[a].prev) chain_.push_back(a);
+            for (std::uint32_t x = u; x != l; x = nodes_[x].prev) chain_.push_back(x);
             for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) device_.move_to(nodes_[*it].pos);
         } else {
-            device_.retrace(n.pos, n.depth, n.path_len);
+            device_.retrace(n.pos, n.depth - L.depth, std::max(0.0, n.path_len - L.path_len));
         }
         at_node_ = u;
     }

@@ -124,6 +124,8 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
         }
     }
     basis_.resize(simplices_.size());
+    dual_.resize(simplices_.size());
+    longest_edge_.assign(simplices_.size(), 0.0);
     for (std::size_t k = 0; k < simplices_.size(); ++k) {
         SkinSimplex& sx = simplices_[k];
         sx.link.assign(links[k].begin(), links[k].end());
@@ -142,6 +144,16 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
             throw InternalError("SkinFunction: a degenerate simplex in the regular triangulation");
         Point3 z = b0.center;
         for (int i = 0; i < d; ++i) z = z + m[i] * e[i];
+        // Dual basis: column j of G⁻¹ combines the edges into dual_j.
+        for (int j = 0; j < d; ++j) {
+            double unit[3] = {0, 0, 0}, col[3] = {0, 0, 0};
+            unit[j] = 1;
+            solve_small(d, G, unit, col);
+            Vec3 dj{0, 0, 0};
+            for (int i = 0; i < d; ++i) dj = dj + col[i] * e[i];
+            dual_[k][std::size_t(j)] = dj;
+            longest_edge_[k] = std::max(longest_edge_[k], norm(e[j]));
+        }
         sx.z = z;
         sx.W = power(b0, z);
         // Orthonormal basis of aff δ's directions (Gram–Schmidt).
@@ -153,33 +165,29 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
     }
 }
 
+Vec3 SkinFunction::along_simplex(std::size_t k, const Vec3& u) const {
+    Vec3 ud{0, 0, 0};
+    for (int i = 0; i < simplices_[k].dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    return ud;
+}
+
 double SkinFunction::violation(std::size_t k, const Point3& x) const {
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x - sx.z;
-    Vec3 ud{0, 0, 0};
-    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 ud = along_simplex(k, u);
     const Vec3 un = u - ud;
     double worst = -std::numeric_limits<double>::infinity();
     const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
     if (sx.dim > 0) {
         // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge.
-        const Point3 p = sx.z + ud / (1 - s_);
-        Vec3 e[3];
-        double G[3][3], r[3], m[3] = {0, 0, 0}, longest = 0;
-        for (int i = 0; i < sx.dim; ++i) {
-            e[i] = balls_[std::size_t(sx.vertices[std::size_t(i + 1)])].center - b0.center;
-            r[i] = dot(e[i], p - b0.center);
-            longest = std::max(longest, norm(e[i]));
-        }
-        for (int i = 0; i < sx.dim; ++i)
-            for (int j = 0; j < sx.dim; ++j) G[i][j] = dot(e[i], e[j]);
-        solve_small(sx.dim, G, r, m);
+        const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
         double l0 = 1;
         for (int i = 0; i < sx.dim; ++i) {
-            l0 -= m[i];
-            worst = std::max(worst, -m[i] * longest);
+            const double m = dot(dual_[k][std::size_t(i)], p);
+            l0 -= m;
+            worst = std::max(worst, -m * longest_edge_[k]);
         }
-        worst = std::max(worst, -l0 * longest);
+        worst = std::max(worst, -l0 * longest_edge_[k]);
     }
     // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex
     // (signed distance to that plane).
@@ -200,8 +208,7 @@ bool SkinFunction::in_mixed_cell(std::size_t k, const Point3& x) const {
 SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x - sx.z;
-    Vec3 ud{0, 0, 0};
-    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 ud = along_simplex(k, u);
     const Vec3 un = u - ud;
     SkinEvaluation ev;
     ev.simplex = k;
@@ -209,8 +216,7 @@ SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
     ev.gradient = (2 / s_) * un - (2 / (1 - s_)) * ud;
     // Φ_δ = uᵀAu + W with A = P_ν/s − P_δ/(1−s): κ = max |tᵀAt| over unit tangents / ‖Au‖.
     const auto A = [&](const Vec3& v) {
-        Vec3 vd{0, 0, 0};
-        for (int i = 0; i < sx.dim; ++i) vd = vd + dot(v, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+        const Vec3 vd = along_simplex(k, v);
         return (1 / s_) * (v - vd) - (1 / (1 - s_)) * vd;
     };
     const Vec3 g = A(u);
@@ -232,8 +238,7 @@ Point3 SkinFunction::flow_in_cell(std::size_t k, const Point3& x0, double t) con
     DYNMESH_CHECK(k < simplices_.size() && is_finite(x0) && std::isfinite(t), "SkinFunction::flow_in_cell: bad arguments");
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x0 - sx.z;
-    Vec3 ud{0, 0, 0};
-    for (int i = 0; i < sx.dim; ++i) ud = ud + dot(u, basis_[k][std::size_t(i)]) * basis_[k][std::size_t(i)];
+    const Vec3 ud = along_simplex(k, u);
     const Vec3 un = u - ud;
     const double a0 = norm(un), b0 = norm(ud);
     const double D = 0.5 * (t - sx.W), ab = a0 * b0;

@@ -12,6 +12,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/mesh_io.hpp"
+#include "test_support.hpp"
 
 namespace dynmesh::test {
 
@@ -33,21 +34,6 @@ inline std::vector<std::string> listing(const std::filesystem::path& dir) {
         names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
-}
-
-/// The IoError message of `f()`, or a failure when it throws something else or nothing.
-template <class F>
-std::string io_error_of(F&& f) {
-    try {
-        f();
-    } catch (const IoError& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "expected IoError, got another exception: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "expected IoError, nothing thrown";
-    return {};
 }
 
 /// Expects read_soup(path) to throw a one-line IoError naming the file and containing every

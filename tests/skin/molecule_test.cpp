@@ -28,16 +28,7 @@ fs::path write_file(const std::string& name, const std::string& text) {
     return p;
 }
 
-/// The IoError message of f(), or "" when it does not throw one.
-template <class F>
-std::string io_error(F&& f) {
-    try {
-        f();
-    } catch (const IoError& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::io_error_of;
 
 TEST(Molecule, PqrFilesOfTheSharedData) {
     const auto hca = read_pqr(test::shared_data("molecules/hca.pqr"));
@@ -98,7 +89,7 @@ TEST(Molecule, BadFilesNameTheFileAndTheLine) {
          }) {
         SCOPED_TRACE(c.name);
         const fs::path p = write_file(c.name, c.text);
-        const std::string msg = io_error([&] {
+        const std::string msg = io_error_of([&] {
             if (c.reader == 0) (void)read_xyzr(p);
             if (c.reader == 1) (void)read_pqr(p);
             if (c.reader == 2) (void)read_weighted_points(p);
@@ -106,7 +97,7 @@ TEST(Molecule, BadFilesNameTheFileAndTheLine) {
         EXPECT_NE(msg.find(c.expect), std::string::npos) << msg;
         EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
-    EXPECT_NE(io_error([] { (void)read_xyzr("no/such/file.xyzr"); }).find("file.xyzr"), std::string::npos);
+    EXPECT_NE(io_error_of([] { (void)read_xyzr("no/such/file.xyzr"); }).find("file.xyzr"), std::string::npos);
 }
 
 TEST(RadiusTable, BondiDefaultsAndTheSharedTable) {
@@ -124,12 +115,12 @@ TEST(RadiusTable, BondiDefaultsAndTheSharedTable) {
     }
     EXPECT_GT(csv.size(), 50u);
     EXPECT_EQ(csv.radius("FE"), 1.80);  // "Elements not listed (e.g. Fe, ...)"
-    EXPECT_NE(io_error([] { (void)RadiusTable::read_csv(write_file("nohead.csv", "C,1.7\n")); }).find("nohead.csv:1: the header"),
+    EXPECT_NE(io_error_of([] { (void)RadiusTable::read_csv(write_file("nohead.csv", "C,1.7\n")); }).find("nohead.csv:1: the header"),
               std::string::npos);
-    EXPECT_NE(io_error([] { (void)RadiusTable::read_csv(write_file("twice.csv", "symbol,radius\nC,1.7\nc,1.8\n")); })
+    EXPECT_NE(io_error_of([] { (void)RadiusTable::read_csv(write_file("twice.csv", "symbol,radius\nC,1.7\nc,1.8\n")); })
                   .find("twice.csv:3: the element 'C' is listed twice"),
               std::string::npos);
-    EXPECT_NE(io_error([] { (void)RadiusTable::read_csv(write_file("neg.csv", "symbol,radius\nC,-1\n")); }).find("neg.csv:2:"),
+    EXPECT_NE(io_error_of([] { (void)RadiusTable::read_csv(write_file("neg.csv", "symbol,radius\nC,-1\n")); }).find("neg.csv:2:"),
               std::string::npos);
     RadiusTable t = RadiusTable::bondi();
     t.set("zn", 1.39);

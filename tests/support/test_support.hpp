@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "dynmesh/error.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh::test {
@@ -27,5 +30,20 @@ SurfaceMesh grid(int n);
 std::string mesh_difference(const SurfaceMesh& a, const SurfaceMesh& b);
 /// The mesh with its vertices, edges and faces renumbered at random (random_mesh_order).
 SurfaceMesh shuffled(SurfaceMesh mesh, std::uint64_t seed);
+
+/// The IoError message of `f()`, or a failure when it throws something else or nothing.
+template <class F>
+std::string io_error_of(F&& f) {
+    try {
+        f();
+    } catch (const IoError& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected IoError, got another exception: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected IoError, nothing thrown";
+    return {};
+}
 
 }  // namespace dynmesh::test

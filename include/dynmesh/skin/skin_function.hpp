@@ -76,8 +76,15 @@ private:
     double s_ = 0.5;
     double scale_ = 1;
     std::vector<SkinSimplex> simplices_;
+    /// u_δ, the component of u along aff δ of simplex k (u_ν = u − u_δ).
+    [[nodiscard]] Vec3 along_simplex(std::size_t k, const Vec3& u) const;
+
     /// Per simplex, an orthonormal basis of the directions of aff δ (dim vectors).
     std::vector<std::array<Vec3, 3>> basis_;
+    /// Per simplex, the dual basis of its edges e_i = z_{i+1} − z_0 (dot(dual_i, e_j) = δ_ij):
+    /// the barycentric coordinate i + 1 of a point p of aff δ is dot(dual_i, p − z_0).
+    std::vector<std::array<Vec3, 3>> dual_;
+    std::vector<double> longest_edge_;
 };
 
 }  // namespace dynmesh
