@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
-#include "circumcenter_accuracy.hpp"
+#include "../geometry/circumcenter_accuracy.hpp"
 #include "refiner_types.hpp"
 
 namespace dynmesh::detail {

@@ -123,6 +123,7 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
                 if (!(mask & (1 << i))) links[it->second].insert(v[i]);
         }
     }
+    index_.assign(index.begin(), index.end());  // std::map iterates in key order
     basis_.resize(simplices_.size());
     dual_.resize(simplices_.size());
     longest_edge_.assign(simplices_.size(), 0.0);
@@ -171,6 +172,41 @@ Vec3 SkinFunction::along_simplex(std::size_t k, const Vec3& u) const {
     return ud;
 }
 
+void SkinFunction::violated(std::size_t k, const Point3& x, std::vector<std::pair<double, std::size_t>>& out) const {
+    out.clear();
+    const SkinSimplex& sx = simplices_[k];
+    const Vec3 u = x - sx.z;
+    const Vec3 ud = along_simplex(k, u);
+    const Vec3 un = u - ud;
+    const double tol = 1e-12 * scale_;
+    const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
+    if (sx.dim > 0) {
+        // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge;
+        // a negative coordinate of vertex i moves to the face without it.
+        const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
+        double l0 = 1;
+        for (int i = 0; i < sx.dim; ++i) {
+            const double m = dot(dual_[k][std::size_t(i)], p);
+            l0 -= m;
+            if (-m * longest_edge_[k] > tol)
+                if (auto f = neighbour(k, sx.vertices[std::size_t(i + 1)], -1)) out.emplace_back(-m * longest_edge_[k], *f);
+        }
+        if (-l0 * longest_edge_[k] > tol)
+            if (auto f = neighbour(k, sx.vertices[0], -1)) out.emplace_back(-l0 * longest_edge_[k], *f);
+    }
+    // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex j
+    // (signed distance to that plane); a violated one moves to the coface δ ∪ {j}.
+    const Point3 q = sx.z + un / s_;
+    const double p0 = power(b0, q);
+    for (int j : sx.link) {
+        const WeightedPoint& bj = balls_[std::size_t(j)];
+        const double v = (p0 - power(bj, q)) / (2 * norm(bj.center - b0.center));
+        if (v > tol)
+            if (auto f = neighbour(k, -1, j)) out.emplace_back(v, *f);
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+}
+
 double SkinFunction::violation(std::size_t k, const Point3& x) const {
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x - sx.z;
@@ -179,7 +215,6 @@ double SkinFunction::violation(std::size_t k, const Point3& x) const {
     double worst = -std::numeric_limits<double>::infinity();
     const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
     if (sx.dim > 0) {
-        // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge.
         const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
         double l0 = 1;
         for (int i = 0; i < sx.dim; ++i) {
@@ -189,16 +224,72 @@ double SkinFunction::violation(std::size_t k, const Point3& x) const {
         }
         worst = std::max(worst, -l0 * longest_edge_[k]);
     }
-    // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex
-    // (signed distance to that plane).
     const Point3 q = sx.z + un / s_;
     const double p0 = power(b0, q);
     for (int j : sx.link) {
         const WeightedPoint& bj = balls_[std::size_t(j)];
-        const double gap = 2 * norm(bj.center - b0.center);
-        worst = std::max(worst, (p0 - power(bj, q)) / gap);
+        worst = std::max(worst, (p0 - power(bj, q)) / (2 * norm(bj.center - b0.center)));
     }
     return worst;
+}
+
+std::optional<std::size_t> SkinFunction::find_simplex(std::array<int, 4> v, int count) const {
+    if (count < 1 || count > 4) return std::nullopt;
+    for (int i = count; i < 4; ++i) v[std::size_t(i)] = -1;
+    std::sort(v.begin(), v.begin() + count);
+    const auto it = std::lower_bound(index_.begin(), index_.end(), v,
+                                     [](const auto& e, const std::array<int, 4>& key) { return e.first < key; });
+    if (it == index_.end() || it->first != v) return std::nullopt;
+    return it->second;
+}
+
+std::optional<std::size_t> SkinFunction::neighbour(std::size_t k, int drop, int add) const {
+    const SkinSimplex& sx = simplices_[k];
+    std::array<int, 4> key{-1, -1, -1, -1};
+    int n = 0;
+    for (int i = 0; i <= sx.dim; ++i)
+        if (sx.vertices[std::size_t(i)] != drop) key[std::size_t(n++)] = sx.vertices[std::size_t(i)];
+    if (add >= 0) {
+        if (n == 4) return std::nullopt;
+        key[std::size_t(n++)] = add;
+    }
+    return find_simplex(key, n);
+}
+
+std::size_t SkinFunction::locate_by_scan(const Point3& x) const {
+    std::size_t best = 0;
+    double best_violation = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < simplices_.size(); ++k) {
+        const double v = violation(k, x);
+        if (v <= 1e-12 * scale_) return k;
+        if (v < best_violation) {
+            best_violation = v;
+            best = k;
+        }
+    }
+    return best;
+}
+
+std::size_t SkinFunction::locate(const Point3& x, std::size_t hint) const {
+    DYNMESH_CHECK(is_finite(x), "SkinFunction::locate: the point is not finite");
+    std::size_t k = hint < simplices_.size() ? hint : 0;
+    std::vector<std::pair<double, std::size_t>> moves;
+    std::vector<std::size_t> visited;
+    for (std::size_t step = 0; step < simplices_.size() + 8; ++step) {
+        violated(k, x, moves);
+        if (moves.empty()) return k;
+        visited.push_back(k);
+        std::optional<std::size_t> next;
+        for (const auto& [amount, target] : moves)
+            if (std::find(visited.begin(), visited.end(), target) == visited.end()) {
+                next = target;
+                break;
+            }
+        if (!next) break;
+        k = *next;
+    }
+    ++fallbacks_;
+    return locate_by_scan(x);
 }
 
 bool SkinFunction::in_mixed_cell(std::size_t k, const Point3& x) const {
@@ -256,19 +347,9 @@ Point3 SkinFunction::flow_in_cell(std::size_t k, const Point3& x0, double t) con
     return x;
 }
 
-SkinEvaluation SkinFunction::evaluate(const Point3& x) const {
+SkinEvaluation SkinFunction::evaluate(const Point3& x, std::size_t hint) const {
     DYNMESH_CHECK(is_finite(x), "SkinFunction::evaluate: the point is not finite");
-    std::size_t best = 0;
-    double best_violation = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < simplices_.size(); ++k) {
-        const double v = violation(k, x);
-        if (v <= 1e-12 * scale_) return evaluate_in(k, x);
-        if (v < best_violation) {
-            best_violation = v;
-            best = k;
-        }
-    }
-    return evaluate_in(best, x);
+    return evaluate_in(locate(x, hint), x);
 }
 
 }  // namespace dynmesh

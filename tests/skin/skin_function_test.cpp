@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -109,6 +111,32 @@ TEST(SkinFunction, AgreesWithTheBruteForceMinimum) {
 
 /// The mixed cells tile space: every point is in at least one, and the gradient is that of Φ
 /// (finite differences), so Φ is C¹ across the cells' faces (§6.1 S2).
+/// The walk (§1.5) ends in a cell that holds the point, with the value of the cell the scan
+/// finds, from any start; on 200 balls it needs no fallback to the scan.
+TEST(SkinFunction, WalkFindsTheCellOfThePoint) {
+    Rng rng(17);
+    std::vector<WeightedPoint> B;
+    for (int i = 0; i < 200; ++i)
+        B.push_back({{rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-6, 6)}, rng.uniform(0.5, 3.0)});
+    const SkinFunction phi(B, 0.5);
+    std::size_t hint = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const Point3 x{rng.uniform(-9, 9), rng.uniform(-9, 9), rng.uniform(-9, 9)};
+        const std::size_t start = trial % 2 ? hint : std::size_t(rng.uniform() * double(phi.simplices().size()));
+        const std::size_t k = phi.locate(x, start);
+        EXPECT_TRUE(phi.in_mixed_cell(k, x)) << trial;
+        const std::size_t scan = phi.locate_by_scan(x);
+        EXPECT_NEAR(phi.evaluate_in(k, x).value, phi.evaluate_in(scan, x).value, 1e-9 * (1 + std::fabs(phi.evaluate_in(scan, x).value)));
+        hint = k;
+    }
+    EXPECT_EQ(phi.locate_fallbacks(), 0u);
+    // The simplex index of ball sets.
+    const SkinSimplex& sx = phi.simplices()[phi.simplices().size() / 2];
+    std::array<int, 4> rev{sx.vertices[3], sx.vertices[2], sx.vertices[1], sx.vertices[0]};
+    std::rotate(rev.begin(), rev.begin() + (3 - sx.dim), rev.end());
+    EXPECT_EQ(phi.find_simplex(rev, sx.dim + 1), phi.simplices().size() / 2);
+}
+
 TEST(SkinFunction, GradientMatchesFiniteDifferencesEverywhere) {
     Rng rng(5);
     for (double s : {0.5, 0.3}) {

@@ -74,6 +74,43 @@ private:
 /// (squared radius; it may be negative). Blank lines and '#' comments are skipped.
 [[nodiscard]] std::vector<WeightedPoint> read_weighted_points(const std::filesystem::path& path);
 
+/// What the structure readers keep (specs/skin-surfaces.md §6.4).
+struct MoleculeReadOptions {
+    bool keep_water = false;      ///< waters (HOH, WAT, DOD, ...) are skipped unless set
+    bool keep_hydrogens = true;   ///< H and D atoms; clear to mesh heavy atoms only
+    /// Atoms with an alternate location are kept when it is blank or this one ('A' by default;
+    /// the first alternate location of a residue when the file has no 'A').
+    char altloc = 'A';
+    int model = 1;                ///< the model (1-based, in file order) of a multi-model file
+};
+
+/// What a structure reader skipped.
+struct MoleculeReadReport {
+    std::string format;               ///< "pdb", "mmcif", "pqr", "xyzr"
+    std::size_t models = 0;           ///< models in the file
+    std::size_t skipped_water = 0;
+    std::size_t skipped_hydrogens = 0;
+    std::size_t skipped_altloc = 0;
+    std::size_t unknown_radius = 0;   ///< atoms given the table's fallback radius
+};
+
+/// PDB (fixed columns) and mmCIF files through gemmi, radii from `radii` by element (gemmi
+/// infers a blank element from the atom name). Coordinates are checked first by our own scan
+/// of the PDB records, so a malformed ATOM/HETATM record is reported with its line: gemmi's
+/// own errors give a line only for some problems (a record too short); an mmCIF syntax error
+/// keeps gemmi's "line N" message, and a non-numeric mmCIF coordinate is named by atom serial.
+/// 	hrow IoError "<file>:<line>: <problem>", or "<file>: ..." for file-level problems (no
+///        atom left, a model that does not exist).
+[[nodiscard]] std::vector<Atom> read_pdb(const std::filesystem::path& path, const RadiusTable& radii,
+                                         const MoleculeReadOptions& options = {}, MoleculeReadReport* report = nullptr);
+[[nodiscard]] std::vector<Atom> read_mmcif(const std::filesystem::path& path, const RadiusTable& radii,
+                                           const MoleculeReadOptions& options = {}, MoleculeReadReport* report = nullptr);
+
+/// Any molecule file by its extension: .pdb/.ent (PDB), .cif/.mmcif (mmCIF), .pqr (radii from
+/// the file), .xyzr (radii from the file). 	hrow IoError for another extension.
+[[nodiscard]] std::vector<Atom> read_molecule(const std::filesystem::path& path, const RadiusTable& radii,
+                                              const MoleculeReadOptions& options = {}, MoleculeReadReport* report = nullptr);
+
 /// The skin's ball set for atoms shrunk by s ∈ (0, 1]: (z_i, r_i²/s).
 /// \throw InvalidInput when s is outside (0, 1].
 [[nodiscard]] std::vector<WeightedPoint> skin_weights(const std::vector<Atom>& atoms, double s);

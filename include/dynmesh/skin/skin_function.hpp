@@ -12,11 +12,14 @@
 /// half-diagonal + 2·max √(w/s) + 1) from the box centre) that Φ near the balls is that of the
 /// balls alone, and so that any input (one ball, coplanar centres) has a 3D triangulation.
 ///
-/// Locating the mixed cell of a point scans every simplex (O(n) per query): this evaluator is
-/// the reference the tests and the static mesher check against.
+/// Locating the mixed cell of a point walks through the mixed complex from a hint (§1.5): from
+/// simplex δ, a failed barycentric coordinate of vertex k moves to the face δ \ {k}, a failed
+/// link constraint of vertex j to the coface δ ∪ {j}, the most violated first; a walk that
+/// would revisit a simplex falls back to scanning every simplex (counted in locate_fallbacks()).
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
@@ -46,8 +49,18 @@ public:
     ///        not finite.
     SkinFunction(std::vector<WeightedPoint> balls, double s);
 
-    [[nodiscard]] SkinEvaluation evaluate(const Point3& x) const;
-    [[nodiscard]] double value(const Point3& x) const { return evaluate(x).value; }
+    /// Φ, ∇Φ and ϱ at x, walking from simplex `hint` (any index; a nearby one is faster: pass the
+    /// `simplex` of the previous evaluation of a nearby point).
+    [[nodiscard]] SkinEvaluation evaluate(const Point3& x, std::size_t hint = 0) const;
+    [[nodiscard]] double value(const Point3& x, std::size_t hint = 0) const { return evaluate(x, hint).value; }
+    /// The index of a simplex whose mixed cell holds x, walking from `hint`.
+    [[nodiscard]] std::size_t locate(const Point3& x, std::size_t hint = 0) const;
+    /// The same by scanning every simplex (the reference the walk is tested against).
+    [[nodiscard]] std::size_t locate_by_scan(const Point3& x) const;
+    /// The simplex with exactly these ball indices (any order), if it is in the triangulation.
+    [[nodiscard]] std::optional<std::size_t> find_simplex(std::array<int, 4> vertices, int count) const;
+    /// Walks that fell back to a scan since construction (not synchronised across threads).
+    [[nodiscard]] std::size_t locate_fallbacks() const { return fallbacks_; }
     /// Is x in the mixed cell of simplex k (up to a relative tolerance of 1e-12)?
     [[nodiscard]] bool in_mixed_cell(std::size_t k, const Point3& x) const;
     /// Φ_δ, ∇Φ_δ and ϱ of simplex k's quadric at x (anywhere: the patch extended).
@@ -70,6 +83,14 @@ public:
 private:
     /// The violation of x's membership in μ_k (≤ 0 inside), relative to the simplex's scale.
     [[nodiscard]] double violation(std::size_t k, const Point3& x) const;
+    /// Every constraint of μ_k that x violates by more than the tolerance, as (violation,
+    /// simplex a walk moves to through it), most violated first.
+    void violated(std::size_t k, const Point3& x, std::vector<std::pair<double, std::size_t>>& out) const;
+    /// The simplex δ of simplex k without (drop ≥ 0) or with (add ≥ 0) one ball.
+    [[nodiscard]] std::optional<std::size_t> neighbour(std::size_t k, int drop, int add) const;
+
+    std::vector<std::pair<std::array<int, 4>, std::size_t>> index_;  ///< sorted ball-index keys
+    mutable std::size_t fallbacks_ = 0;
 
     std::vector<WeightedPoint> balls_;
     std::size_t n_input_ = 0;

@@ -1,5 +1,5 @@
 #pragma once
-/// \file When a circumcentre computed in double is good enough for the probing triangulations.
+/// \file When a circumcentre computed in double is good enough (the probing and skin triangulations).
 
 #include <algorithm>
 #include <array>

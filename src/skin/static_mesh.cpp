@@ -1,0 +1,408 @@
+#include "dynmesh/skin/static_mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include "../geometry/circumcenter_accuracy.hpp"
+#include "dynmesh/error.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/soup.hpp"
+
+namespace dynmesh {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+
+struct VertexInfo {
+    double rho = 0;                 ///< ϱ at the sample
+    std::size_t hint = 0;           ///< a mixed cell near it
+    std::uint32_t mesh_index = ~0u; ///< its index in the output (while extracting)
+};
+struct CellInfo {
+    Point3 cc{};       ///< circumcentre (a Voronoi vertex)
+    double f = 0;      ///< Φ(cc) − t
+    bool ready = false;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
+using Cb = CGAL::Triangulation_cell_base_with_info_3<CellInfo, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+using Cell = DT::Cell_handle;
+using Vertex = DT::Vertex_handle;
+
+Point3 to_p(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+K::Point_3 to_k(const Point3& p) { return {p.x, p.y, p.z}; }
+
+/// Why a restricted facet is refined.
+enum class Defect : std::uint8_t { None, Size, Shape, Topology };
+
+struct Crossing {
+    int hits = 0;    ///< sign changes of Φ − t seen along the dual edge
+    Point3 p{};      ///< the first crossing from the finite end: the surface Delaunay ball's centre
+};
+
+struct BadFacet {
+    double priority = 0;
+    Vertex a, b, c;
+    bool operator<(const BadFacet& o) const { return priority < o.priority; }
+};
+
+class Mesher {
+public:
+    Mesher(const SkinFunction& phi, const SkinMeshOptions& options) : phi_(phi), opt_(options), t_(options.time) {
+        DYNMESH_CHECK(std::isfinite(t_), "mesh_skin: the time must be finite");
+        DYNMESH_CHECK(options.quality.C > 0 && options.quality.Q0 > 1, "mesh_skin: C must be positive and Q0 above 1");
+        DYNMESH_CHECK(options.radius_edge_bound >= 0.6, "mesh_skin: the radius-edge bound must be at least 0.6");
+        DYNMESH_CHECK(options.rho_floor_factor > 0 && options.rho_floor_factor < 1,
+                      "mesh_skin: the floor factor must be in (0, 1)");
+        const double s = phi.shrink();
+        bool any = false;
+        double radius_sum = 0;
+        std::size_t counted = 0;
+        for (std::size_t i = 0; i < phi.input_balls(); ++i) {
+            const WeightedPoint& b = phi.balls()[i];
+            if (b.weight > 0) {
+                radius_sum += std::sqrt(s * b.weight);
+                ++counted;
+            }
+            if (b.weight + t_ <= 0) continue;
+            const double r = std::sqrt(b.weight + t_);
+            const Vec3 e{r, r, r};
+            lo_ = any ? Point3{std::min(lo_.x, b.center.x - r), std::min(lo_.y, b.center.y - r), std::min(lo_.z, b.center.z - r)}
+                      : b.center - e;
+            hi_ = any ? Point3{std::max(hi_.x, b.center.x + r), std::max(hi_.y, b.center.y + r), std::max(hi_.z, b.center.z + r)}
+                      : b.center + e;
+            any = true;
+        }
+        DYNMESH_CHECK(any, "mesh_skin: the skin is empty at this time (no ball has a positive weight + t)");
+        rho_floor_ = options.rho_floor_factor * (counted ? radius_sum / double(counted) : norm(hi_ - lo_));
+        scale2_ = sqnorm(hi_ - lo_);
+    }
+
+    SkinMeshResult run() {
+        const auto start = std::chrono::steady_clock::now();
+        seed();
+        for (Cell c : dt_.finite_cell_handles()) prepare(c);
+        for (auto f = dt_.finite_facets_begin(); f != dt_.finite_facets_end(); ++f) test_facet(f->first, f->second);
+        refine();
+        SkinMeshResult result = extract();
+        report_.delaunay_vertices = dt_.number_of_vertices();
+        report_.locate_fallbacks = phi_.locate_fallbacks();
+        report_.rho_floor = rho_floor_;
+        report_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.report = report_;
+        return result;
+    }
+
+private:
+    double f_at(const Point3& x, std::size_t& hint) const {
+        const std::size_t k = phi_.locate(x, hint);
+        hint = k;
+        return phi_.evaluate_in(k, x).value - t_;
+    }
+
+    /// The crossing of Φ = t between a (f(a) = fa) and b (f(b) = fb, opposite signs), by the
+    /// Illinois variant of regula falsi (Φ is piecewise quadratic along a line).
+    Point3 root_between(Point3 a, double fa, Point3 b, double fb, std::size_t& hint) const {
+        int side = 0;
+        const double tol = 1e-13 * scale2_;
+        for (int it = 0; it < 200; ++it) {
+            const double w = fa / (fa - fb);
+            const Point3 m = a + w * (b - a);
+            const double fm = f_at(m, hint);
+            if (std::fabs(fm) <= tol || sqnorm(b - a) <= 1e-30 * scale2_) return m;
+            if ((fm < 0) == (fa < 0)) {
+                a = m;
+                fa = fm;
+                if (side == -1) fb *= 0.5;
+                side = -1;
+            } else {
+                b = m;
+                fb = fm;
+                if (side == 1) fa *= 0.5;
+                side = 1;
+            }
+        }
+        return a + (fa / (fa - fb)) * (b - a);
+    }
+
+    void add_sample(const Point3& p, std::size_t hint, Cell near = Cell()) {
+        const std::size_t before = dt_.number_of_vertices();
+        Vertex v = dt_.insert(to_k(p), near);
+        if (dt_.number_of_vertices() == before) {
+            ++report_.refused;
+            return;
+        }
+        const SkinEvaluation ev = phi_.evaluate(p, hint);
+        v->info().rho = ev.rho;
+        v->info().hint = ev.simplex;
+        last_inserted_ = v;
+    }
+
+    /// Rays from each local minimum of Φ below t (born atoms) and each local maximum above t
+    /// (living voids) to the skin: every component of the skin gets points.
+    void seed() {
+        // Eight directions spread over the sphere by the golden-angle spiral, turned per seed
+        // centre so that no two centres' seeds are translates (no cospherical and coplanar
+        // quadruples of samples).
+        const auto directions = [](std::size_t k) {
+            std::vector<Vec3> dirs;
+            const double turn = 0.61803398874989485 * double(k % 997);
+            for (int i = 0; i < 8; ++i) {
+                const double z = 1 - (2 * i + 1) / 8.0, r = std::sqrt(1 - z * z);
+                const double a = 2.399963229728653 * i + turn;
+                dirs.push_back({r * std::cos(a), r * std::sin(a), z});
+            }
+            return dirs;
+        };
+        const double s = phi_.shrink();
+        std::vector<Point3> seeds;
+        for (std::size_t k = 0; k < phi_.simplices().size(); ++k) {
+            const SkinSimplex& sx = phi_.simplices()[k];
+            const bool birth = sx.dim == 0 && std::size_t(sx.vertices[0]) < phi_.input_balls() && sx.W < t_;
+            const bool void_centre = sx.dim == 3 && sx.W > t_;
+            if (!birth && !void_centre) continue;
+            if (!phi_.in_mixed_cell(k, sx.z)) continue;  // not a critical point of Φ
+            // The patch around z is a sphere of radius √(s(t − W)) or √((1 − s)(W − t)).
+            const double r = birth ? std::sqrt(s * (t_ - sx.W)) : std::sqrt((1 - s) * (sx.W - t_));
+            for (const Vec3& d : directions(k)) {
+                std::size_t hint = k;
+                double fa = sx.W - t_;
+                Point3 a = sx.z;
+                for (int step = 1; step < 100000; ++step) {
+                    const Point3 b = sx.z + (0.5 * r * step) * d;
+                    const double fb = f_at(b, hint);
+                    if ((fb < 0) != (fa < 0)) {
+                        seeds.push_back(root_between(a, fa, b, fb, hint));
+                        break;
+                    }
+                    a = b;
+                    fa = fb;
+                }
+            }
+        }
+        report_.seeds = seeds.size();
+        DYNMESH_CHECK(seeds.size() >= 4, "mesh_skin: the skin has too few seed points");
+        std::size_t hint = 0;
+        for (const Point3& p : seeds) add_sample(p, hint);
+        DYNMESH_CHECK(dt_.dimension() == 3, "mesh_skin: the seed points are coplanar");
+    }
+
+    void prepare(Cell c) {
+        if (c->info().ready || dt_.is_infinite(c)) return;
+        const K::Point_3& a = c->vertex(0)->point();
+        const K::Point_3& b = c->vertex(1)->point();
+        const K::Point_3& d = c->vertex(2)->point();
+        const K::Point_3& e = c->vertex(3)->point();
+        K::Point_3 x = CGAL::circumcenter(a, b, d, e);
+        if (!detail::circumcenter_is_accurate(x, std::array{&a, &b, &d, &e})) {
+            const CGAL::Cartesian_converter<K, EK> to_exact;
+            const EK::Point_3 ex = CGAL::circumcenter(to_exact(a), to_exact(b), to_exact(d), to_exact(e));
+            x = K::Point_3(CGAL::to_double(ex.x()), CGAL::to_double(ex.y()), CGAL::to_double(ex.z()));
+        }
+        c->info().cc = to_p(x);
+        if (!is_finite(c->info().cc)) {
+            // A flat cell (four cospherical and coplanar samples): its Voronoi vertex is at
+            // infinity; its centroid stands in, so that the facets around it are still judged.
+            ++report_.flat_cells;
+            c->info().cc = to_p(CGAL::centroid(a, b, d, e));
+        }
+        std::size_t hint = c->vertex(0)->info().hint;
+        c->info().f = f_at(c->info().cc, hint);
+        c->info().ready = true;
+    }
+
+    /// The crossings of the facet's dual Voronoi edge with the skin.
+    Crossing dual_crossing(Cell c, int i) {
+        Cell n = c->neighbor(i);
+        if (dt_.is_infinite(c)) {
+            std::swap(c, n);
+            i = c->index(n);
+        }
+        prepare(c);
+        const Point3 a = c->info().cc;
+        const double fa = c->info().f;
+        Point3 b;
+        double fb;
+        std::size_t hint = c->vertex(0)->info().hint;
+        if (dt_.is_infinite(n)) {
+            // The outward ray of a hull facet, cut beyond the box that holds the skin.
+            const Point3 p0 = to_p(c->vertex((i + 1) & 3)->point());
+            const Point3 p1 = to_p(c->vertex((i + 2) & 3)->point());
+            const Point3 p2 = to_p(c->vertex((i + 3) & 3)->point());
+            Vec3 nrm = normalized(cross(p1 - p0, p2 - p0));
+            if (dot(nrm, to_p(c->vertex(i)->point()) - p0) > 0) nrm = -1.0 * nrm;
+            const Point3 mid = lo_ + 0.5 * (hi_ - lo_);
+            const double len = norm(a - mid) + norm(hi_ - lo_) + 1e-9;
+            b = a + len * nrm;
+            fb = f_at(b, hint);
+        } else {
+            prepare(n);
+            b = n->info().cc;
+            fb = n->info().f;
+        }
+        // Three interior samples catch most edges that enter and leave the skin.
+        Crossing out;
+        Point3 prev = a;
+        double fprev = fa;
+        for (int k = 1; k <= 4; ++k) {
+            const Point3 x = k == 4 ? b : a + (0.25 * k) * (b - a);
+            const double fx = k == 4 ? fb : f_at(x, hint);
+            if ((fx < 0) != (fprev < 0)) {
+                if (out.hits == 0) out.p = root_between(prev, fprev, x, fx, hint);
+                ++out.hits;
+            }
+            prev = x;
+            fprev = fx;
+        }
+        return out;
+    }
+
+    /// Why the facet (c, i) must be refined (None when it is not restricted, or good).
+    Defect judge(Cell c, int i, Crossing& x, double& priority) {
+        x = dual_crossing(c, i);
+        if (x.hits == 0) return Defect::None;
+        const Vertex v0 = c->vertex((i + 1) & 3), v1 = c->vertex((i + 2) & 3), v2 = c->vertex((i + 3) & 3);
+        const Point3 p0 = to_p(v0->point()), p1 = to_p(v1->point()), p2 = to_p(v2->point());
+        const double r = norm(x.p - p0);
+        const double lambda = std::max({std::min({v0->info().rho, v1->info().rho, v2->info().rho}), rho_floor_});
+        const double shortest = std::sqrt(std::min({sqnorm(p1 - p0), sqnorm(p2 - p1), sqnorm(p0 - p2)}));
+        priority = r / lambda;
+        if (r > opt_.quality.C * opt_.quality.Q0 * lambda) return Defect::Size;
+        if (x.hits > 1) return Defect::Topology;
+        if (r > opt_.radius_edge_bound * shortest && shortest > 0.05 * rho_floor_) return Defect::Shape;
+        return Defect::None;
+    }
+
+    void test_facet(Cell c, int i) {
+        if (dt_.is_infinite(c->vertex((i + 1) & 3)) || dt_.is_infinite(c->vertex((i + 2) & 3)) ||
+            dt_.is_infinite(c->vertex((i + 3) & 3)))
+            return;
+        Crossing x;
+        double priority = 0;
+        if (judge(c, i, x, priority) == Defect::None) return;
+        queue_.push({priority, c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)});
+    }
+
+    void refine() {
+        std::vector<Cell> star;
+        std::size_t next_progress = 0;
+        while (!queue_.empty()) {
+            const BadFacet bad = queue_.top();
+            queue_.pop();
+            Cell c;
+            int i0 = 0, i1 = 0, i2 = 0;
+            if (!dt_.is_facet(bad.a, bad.b, bad.c, c, i0, i1, i2)) continue;
+            const int i = 6 - i0 - i1 - i2;
+            Crossing x;
+            double priority = 0;
+            const Defect defect = judge(c, i, x, priority);
+            if (defect == Defect::None) continue;
+            DYNMESH_CHECK(dt_.number_of_vertices() < opt_.max_vertices,
+                          "mesh_skin: more than max_vertices = " + std::to_string(opt_.max_vertices) +
+                              " samples; raise the limit or the floor under the length scale");
+            last_inserted_ = Vertex();
+            add_sample(x.p, c->vertex(i0)->info().hint, c);
+            if (last_inserted_ == Vertex()) continue;
+            (defect == Defect::Size ? report_.refined_size
+                                    : defect == Defect::Shape ? report_.refined_shape : report_.refined_topology)++;
+            star.clear();
+            dt_.incident_cells(last_inserted_, std::back_inserter(star));
+            for (Cell s : star) {
+                for (int k = 0; k < 4; ++k) {
+                    const Cell n = s->neighbor(k);
+                    if (n->has_vertex(last_inserted_) && n < s) continue;  // shared facet, tested once
+                    test_facet(s, k);
+                }
+            }
+            if (opt_.progress && dt_.number_of_vertices() >= next_progress) {
+                opt_.progress(dt_.number_of_vertices(), queue_.size());
+                next_progress = dt_.number_of_vertices() + std::max<std::size_t>(1000, dt_.number_of_vertices() / 100);
+            }
+        }
+    }
+
+    SkinMeshResult extract() {
+        TriangleSoup soup;
+        SkinMeshResult result;
+        for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) v->info().mesh_index = ~0u;
+        const auto index_of = [&](Vertex v) {
+            if (v->info().mesh_index == ~0u) {
+                std::size_t hint = v->info().hint;
+                v->info().mesh_index = std::uint32_t(soup.points.size());
+                soup.points.push_back(project_to_skin(phi_, to_p(v->point()), t_, hint));
+                result.rho.push_back(v->info().rho);
+            }
+            return v->info().mesh_index;
+        };
+        for (auto f = dt_.finite_facets_begin(); f != dt_.finite_facets_end(); ++f) {
+            const Cell c = f->first;
+            const int i = f->second;
+            const Crossing x = dual_crossing(c, i);
+            if (x.hits == 0) continue;
+            Vertex v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+            const Point3 p0 = to_p(v[0]->point()), p1 = to_p(v[1]->point()), p2 = to_p(v[2]->point());
+            std::size_t hint = v[0]->info().hint;
+            const Vec3 g = phi_.evaluate(x.p, hint).gradient;
+            if (dot(cross(p1 - p0, p2 - p0), g) < 0) std::swap(v[1], v[2]);
+            soup.triangles.push_back({index_of(v[0]), index_of(v[1]), index_of(v[2])});
+        }
+        result.mesh = SurfaceMesh::from_soup(soup);
+        return result;
+    }
+
+    const SkinFunction& phi_;
+    SkinMeshOptions opt_;
+    double t_;
+    Point3 lo_{}, hi_{};
+    double rho_floor_ = 0;
+    double scale2_ = 1;
+    DT dt_;
+    std::priority_queue<BadFacet> queue_;
+    Vertex last_inserted_;
+    SkinMeshReport report_;
+};
+
+}  // namespace
+
+Point3 project_to_skin(const SkinFunction& phi, const Point3& x0, double t, std::size_t& hint) {
+    Point3 x = x0;
+    for (int it = 0; it < 50; ++it) {
+        const SkinEvaluation ev = phi.evaluate(x, hint);
+        hint = ev.simplex;
+        const double f = ev.value - t;
+        const double g2 = sqnorm(ev.gradient);
+        if (!(g2 > 0)) break;
+        const Point3 next = x - (f / g2) * ev.gradient;
+        const double moved2 = sqnorm(next - x);
+        x = next;
+        if (moved2 <= 1e-28 * (sqnorm(x - Point3{0, 0, 0}) + ev.rho * ev.rho) || moved2 == 0) break;
+    }
+    return x;
+}
+
+SkinMeshResult mesh_skin(const SkinFunction& phi, const SkinMeshOptions& options) {
+    Mesher mesher(phi, options);
+    return mesher.run();
+}
+
+}  // namespace dynmesh
