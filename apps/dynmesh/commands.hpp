@@ -14,5 +14,6 @@ void register_experiment(CLI::App& root, int& result);
 void register_quadtree(CLI::App& root, int& result);
 void register_deform(CLI::App& root, int& result);
 void register_probe(CLI::App& root, int& result);
+void register_skin(CLI::App& root, int& result);
 
 }  // namespace dynmesh::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     cli::register_quadtree(app, result);
     cli::register_deform(app, result);
     cli::register_probe(app, result);
+    cli::register_skin(app, result);
     // "dynmesh frob": name the unknown subcommand instead of CLI11's "a subcommand is required".
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;

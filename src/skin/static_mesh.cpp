@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -40,6 +41,7 @@ struct VertexInfo {
 struct CellInfo {
     Point3 cc{};       ///< circumcentre (a Voronoi vertex)
     double f = 0;      ///< Φ(cc) − t
+    double clear = 0;  ///< a radius around cc free of the skin (Sample::clear)
     bool ready = false;
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
@@ -120,6 +122,51 @@ private:
         return phi_.evaluate_in(k, x).value - t_;
     }
 
+    /// Φ − t at x and a radius around x that the skin does not enter: along any path
+    /// |∇Φ| ≤ c·g with g = ‖y − z_δ(y)‖ (c = 2/min(s, 1 − s)) and g 1-Lipschitz (§1.6), so
+    /// |Φ(y) − Φ(x)| ≤ c(g·d + d²/2) within distance d, which stays below |Φ(x) − t| for
+    /// d < −g + √(g² + 2|Φ(x) − t|/c).
+    struct Sample {
+        double f = 0;
+        double clear = 0;
+    };
+    Sample sample_at(const Point3& x, std::size_t& hint) const {
+        const std::size_t k = phi_.locate(x, hint);
+        hint = k;
+        const double g = norm(x - phi_.simplices()[k].z);
+        const double f = phi_.evaluate_in(k, x).value - t_;
+        const double c = 2 / std::min(phi_.shrink(), 1 - phi_.shrink());
+        return {f, std::max(0.0, 0.999 * (std::sqrt(g * g + 2 * std::fabs(f) / c) - g))};
+    }
+
+    /// A root of Φ = t on the segment [a, b] inside the mixed cell of simplex k, from that
+    /// cell's quadric restricted to the line (exact up to rounding), if it has one there.
+    std::optional<Point3> root_in_cell(std::size_t k, const Point3& a, const Point3& b) const {
+        const double f0 = phi_.evaluate_in(k, a).value - t_;
+        const double f1 = phi_.evaluate_in(k, b).value - t_;
+        const double fm = phi_.evaluate_in(k, a + 0.5 * (b - a)).value - t_;
+        // f(τ) = f0 + β τ + α τ², τ in [0, 1].
+        const double alpha = 2 * (f1 + f0 - 2 * fm), beta = f1 - f0 - alpha;
+        double roots[2];
+        int n = 0;
+        if (std::fabs(alpha) <= 1e-14 * (std::fabs(beta) + std::fabs(f0))) {
+            if (beta != 0) roots[n++] = -f0 / beta;
+        } else {
+            const double disc = beta * beta - 4 * alpha * f0;
+            if (disc >= 0) {
+                const double q = -0.5 * (beta + std::copysign(std::sqrt(disc), beta));
+                if (q != 0) roots[n++] = f0 / q;
+                roots[n++] = q / alpha;
+            }
+        }
+        for (int i = 0; i < n; ++i) {
+            if (!(roots[i] >= -1e-12 && roots[i] <= 1 + 1e-12)) continue;
+            const Point3 x = a + std::clamp(roots[i], 0.0, 1.0) * (b - a);
+            if (phi_.in_mixed_cell(k, x)) return x;
+        }
+        return std::nullopt;
+    }
+
     /// The crossing of Φ = t between a (f(a) = fa) and b (f(b) = fb, opposite signs), by the
     /// Illinois variant of regula falsi (Φ is piecewise quadratic along a line).
     Point3 root_between(Point3 a, double fa, Point3 b, double fb, std::size_t& hint) const {
@@ -129,6 +176,7 @@ private:
             const double w = fa / (fa - fb);
             const Point3 m = a + w * (b - a);
             const double fm = f_at(m, hint);
+            if (auto x = root_in_cell(hint, a, b)) return *x;
             if (std::fabs(fm) <= tol || sqnorm(b - a) <= 1e-30 * scale2_) return m;
             if ((fm < 0) == (fa < 0)) {
                 a = m;
@@ -227,7 +275,9 @@ private:
             c->info().cc = to_p(CGAL::centroid(a, b, d, e));
         }
         std::size_t hint = c->vertex(0)->info().hint;
-        c->info().f = f_at(c->info().cc, hint);
+        const Sample smp = sample_at(c->info().cc, hint);
+        c->info().f = smp.f;
+        c->info().clear = smp.clear;
         c->info().ready = true;
     }
 
@@ -240,9 +290,9 @@ private:
         }
         prepare(c);
         const Point3 a = c->info().cc;
-        const double fa = c->info().f;
+        const Sample sa{c->info().f, c->info().clear};
         Point3 b;
-        double fb;
+        Sample sb;
         std::size_t hint = c->vertex(0)->info().hint;
         if (dt_.is_infinite(n)) {
             // The outward ray of a hull facet, cut beyond the box that holds the skin.
@@ -254,25 +304,38 @@ private:
             const Point3 mid = lo_ + 0.5 * (hi_ - lo_);
             const double len = norm(a - mid) + norm(hi_ - lo_) + 1e-9;
             b = a + len * nrm;
-            fb = f_at(b, hint);
+            sb = sample_at(b, hint);
         } else {
             prepare(n);
             b = n->info().cc;
-            fb = n->info().f;
+            sb = {n->info().f, n->info().clear};
         }
-        // Three interior samples catch most edges that enter and leave the skin.
+        // Pieces of the edge are halved until each either changes sign (a crossing) or is
+        // covered by the skin-free balls of its ends (none); a piece still undecided after 8
+        // halvings only grazes the skin and counts as no crossing.
         Crossing out;
-        Point3 prev = a;
-        double fprev = fa;
-        for (int k = 1; k <= 4; ++k) {
-            const Point3 x = k == 4 ? b : a + (0.25 * k) * (b - a);
-            const double fx = k == 4 ? fb : f_at(x, hint);
-            if ((fx < 0) != (fprev < 0)) {
-                if (out.hits == 0) out.p = root_between(prev, fprev, x, fx, hint);
+        struct Piece {
+            Point3 a, b;
+            Sample sa, sb;
+            int depth;
+        };
+        Piece stack[32];
+        int top = 0;
+        stack[top++] = {a, b, sa, sb, 0};
+        while (top > 0) {
+            const Piece pc = stack[--top];
+            if ((pc.sa.f < 0) != (pc.sb.f < 0)) {
+                if (out.hits == 0) out.p = root_between(pc.a, pc.sa.f, pc.b, pc.sb.f, hint);
                 ++out.hits;
+                continue;
             }
-            prev = x;
-            fprev = fx;
+            const double len = norm(pc.b - pc.a);
+            if (pc.sa.clear + pc.sb.clear >= len || pc.depth >= 8 || top + 2 > 32) continue;
+            const Point3 m = pc.a + 0.5 * (pc.b - pc.a);
+            const Sample sm = sample_at(m, hint);
+            // Far half first on the stack, so the near half is searched first.
+            stack[top++] = {m, pc.b, sm, pc.sb, pc.depth + 1};
+            stack[top++] = {pc.a, m, pc.sa, sm, pc.depth + 1};
         }
         return out;
     }

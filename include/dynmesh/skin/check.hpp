@@ -1,0 +1,53 @@
+#pragma once
+/// \file The invariants of a skin mesh (specs/skin-surfaces.md §6.3 M1, M2, M4, M5), measured
+/// and checked in one pass: what the tests assert and `dynmesh skin --check` runs.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/skin/safe_duration.hpp"
+#include "dynmesh/skin/skin_function.hpp"
+
+namespace dynmesh {
+
+struct SkinMeshCheckOptions {
+    double time = 0;             ///< the level t the mesh stands for
+    SkinQuality quality{};       ///< Q1 sets the angle floor asin(1/Q1²) and the bound (C·Q1)²
+    double rho_floor = 0;        ///< ϱ below this counts as this (the mesher's floor)
+    double max_normal_deviation_deg = 25;
+    double max_vertex_offset = 1e-9;  ///< |Φ − t|/‖∇Φ‖ over the skin's extent
+};
+
+struct SkinMeshCheck {
+    std::vector<std::string> problems;  ///< one line each; empty when every invariant holds
+    long long euler = 0;
+    std::size_t components = 0;
+    long long expected_euler = 0;       ///< 2(b0 − b1 + b2) of the alpha complex at t
+    long long expected_components = 0;  ///< b0 + b2
+    double min_angle_deg = 0;           ///< smallest angle of any triangle
+    double angle_floor_deg = 0;         ///< asin(1/Q1²)
+    double frac_angles_below_15 = 0;    ///< share of triangles with an angle under 15°
+    double frac_angles_below_20 = 0;    ///< share of triangles with an angle under 20°
+    double frac_below_floor = 0;        ///< share of triangles with an angle under the floor
+    /// Mesh to skin: the largest distance of a triangle point (10 per triangle) from the skin,
+    /// over ϱ at its foot, and in absolute units.
+    double hausdorff_over_rho_max = 0;
+    double hausdorff_max = 0;
+    double normal_dev_max_deg = 0;      ///< triangle normal against ∇Φ at its projected centroid
+    double normal_dev_mean_deg = 0;
+    double vertex_offset_max = 0;       ///< max |Φ − t|/‖∇Φ‖ over vertices, relative to the extent
+    std::size_t inward_faces = 0;       ///< triangles whose normal opposes ∇Φ
+    [[nodiscard]] bool ok() const { return problems.empty(); }
+};
+
+/// Measures `mesh` against the skin Φ = options.time and lists every violated invariant:
+/// not a closed oriented 2-manifold; Euler characteristic or components unlike the alpha
+/// complex (skin_topology of the input balls); a vertex off the skin; a triangle turned
+/// inward; an angle under asin(1/Q1²); mesh-to-skin distance over (C·Q1)²·ϱ; normal deviation
+/// over the limit.
+[[nodiscard]] SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh,
+                                            const SkinMeshCheckOptions& options = {});
+
+}  // namespace dynmesh
