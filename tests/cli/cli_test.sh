@@ -17,7 +17,7 @@ mesh=$data/meshes/blobby.off
 case $case_name in
 help)
     run 0 "$bin" --help
-    for c in flip worsen stats check sample experiment quadtree deform probe; do
+    for c in flip worsen stats check sample experiment quadtree deform probe skin; do
         run 0 "$bin" $c --help
         grep -q -- "--report" out.txt || fail "$c --help does not mention --report"
     done
@@ -28,7 +28,7 @@ exit_codes)
     # The contract of every subcommand: 0 ok, 1 checks failed, 2 usage, 3 bad input, 4 internal.
     run 0 "$bin" --help
     grep -q "Exit codes" out.txt || fail "--help does not list the exit codes"
-    for c in flip worsen stats check sample experiment qmesh deform probe; do
+    for c in flip worsen stats check sample experiment qmesh deform probe skin; do
         run 0 "$bin" $c --help
         grep -q "Exit codes: 0 success; 1" out.txt || fail "$c --help does not list the exit codes"
         run 2 "$bin" $c --no-such-flag
@@ -420,6 +420,76 @@ PY
     grep -q "^element edge $(json_get star.json "['facets']")" star.ply || fail "star.ply: no edge element"
     run 0 "$bin" probe circle2:1 --dim 2 --eps 0.05 -o c.off --png c.png --report c.json --quiet
     [ "$(head -c 4 c.png | od -An -c | tr -d ' ')" = '211PNG' ] || fail "c.png is not a PNG"
+    ;;
+skin)
+    # The static skin of a bundled molecule: the report's fields, the mesh file with rho, --check.
+    run 0 "$bin" skin "$data/molecules/small02.pdb" -o s.ply --report s.json --check
+    for f in atoms vertices triangles euler components min_angle_deg frac_angles_below_15 \
+             hausdorff_over_rho_max normal_dev_max_deg checks actions violations born_bad seconds; do
+        json_get s.json "['$f']" >/dev/null || fail "report field $f missing"
+    done
+    [ "$(json_get s.json "['atoms']")" = 36 ] || fail "small02.pdb has 36 atoms"
+    [ "$(json_get s.json "['euler']")" = "$(json_get s.json "['expected_euler']")" ] || fail "Euler differs from the alpha complex"
+    v=$(json_get s.json "['vertices']")
+    grep -a -q "element vertex $v" s.ply || fail "the PLY header does not hold $v vertices"
+    grep -a -q "property float rho" s.ply || fail "the PLY file has no rho"
+    python3 -c "import sys; d=__import__('json').load(open('s.json')); sys.exit(0 if d['min_angle_deg'] > d['angle_floor_deg'] and d['hausdorff_over_rho_max'] <= 0.0729 else 1)" \
+        || fail "quality goals not met: $(cat s.json)"
+    run 0 "$bin" skin "$data/molecules/bx6_7_lig_apbs.pqr" -q --report p.json
+    [ "$(json_get p.json "['format']")" = pqr ] || fail "PQR not read as PQR"
+    run 3 "$bin" skin "$data/molecules/caffeine.cin" -o x.ply
+    grep -q "unknown molecule format" err.txt || fail "a .cin file was taken for a molecule: $(cat err.txt)"
+    true
+    ;;
+skin_bad)
+    # Bad and odd molecules: a valid mesh, or a one-line error naming the file (and the line).
+    atom() { printf '%-6s%5d %-4s%1s%3s %1s%4d%1s   %8s%8s%8s%6.2f%6.2f          %2s\n' "$@"; }
+    : > empty.pdb
+    run 3 "$bin" skin empty.pdb -o e.ply
+    [ "$(wc -l <err.txt)" -eq 1 ] && grep -q "empty.pdb" err.txt || fail "empty file: $(cat err.txt)"
+    printf '0 0 0 1.7\n' > one.xyzr
+    run 0 "$bin" skin one.xyzr -q --report one.json --check
+    [ "$(json_get one.json "['euler']")" = 2 ] || fail "one atom is not a sphere"
+    printf '0 0 0 1.7\n0 0 0 1.7\n2 0 0 1.5\n' > same.xyzr
+    run 0 "$bin" skin same.xyzr -q --report same.json --check
+    { atom ATOM 1 N "" MET A 1 "" 0.000 0.000 0.000 1 10 N
+      atom ATOM 2 CA A MET A 1 "" 1.400 0.000 0.000 0.5 10 C
+      atom ATOM 3 CA B MET A 1 "" 1.500 0.300 0.000 0.5 10 C
+      atom ATOM 4 C "" MET A 1 "" 2.000 1.300 0.000 1 10 ""
+      atom ATOM 5 O "" GLY A 52 A 3.100 1.500 0.400 1 10 O
+      atom HETATM 6 C1 "" LIG B 1 "" 12.000 0.000 0.000 1 10 C
+      atom HETATM 7 O "" HOH W 1 "" 20.000 0.000 0.000 1 10 O; } > odd.pdb
+    run 0 "$bin" skin odd.pdb -q --report odd.json --check
+    [ "$(json_get odd.json "['atoms']")" = 5 ] || fail "altloc B and the water should be skipped: $(cat odd.json)"
+    [ "$(json_get odd.json "['skipped']['altloc']")" = 1 ] || fail "the altloc B atom was not counted"
+    [ "$(json_get odd.json "['components']")" = 2 ] || fail "the ligand is a second component"
+    run 0 "$bin" skin odd.pdb -q --report odd2.json --keep-water --altloc B
+    [ "$(json_get odd2.json "['atoms']")" = 6 ] || fail "--keep-water --altloc B: $(cat odd2.json)"
+    { echo "MODEL        1"; atom ATOM 1 C "" ALA A 1 "" 0.000 0.000 0.000 1 10 C; echo "ENDMDL"
+      echo "MODEL        2"; atom ATOM 1 C "" ALA A 1 "" 0.000 0.000 0.000 1 10 C
+      atom ATOM 2 C "" ALA A 1 "" 9.000 0.000 0.000 1 10 C; echo "ENDMDL"; } > nmr.pdb
+    run 0 "$bin" skin nmr.pdb -q --report m1.json
+    [ "$(json_get m1.json "['components']")" = 1 ] || fail "model 1 has one atom"
+    run 0 "$bin" skin nmr.pdb -q --report m2.json --model 2
+    [ "$(json_get m2.json "['components']")" = 2 ] || fail "model 2 has two atoms apart"
+    run 3 "$bin" skin nmr.pdb -o x.ply --model 3
+    grep -q "nmr.pdb" err.txt || fail "a missing model is not named: $(cat err.txt)"
+    { atom ATOM 1 C "" ALA A 1 "" 0.000 0.000 0.000 1 10 C; atom ATOM 2 C "" ALA A 1 "" 1.x00 0.000 0.000 1 10 C; } > nan.pdb
+    run 3 "$bin" skin nan.pdb -o x.ply
+    [ "$(wc -l <err.txt)" -eq 1 ] && grep -q "nan.pdb:2:" err.txt || fail "a bad coordinate is not named with its line: $(cat err.txt)"
+    printf 'ATOM      1  C   ALA A   1      0.000\n' > short.pdb
+    run 3 "$bin" skin short.pdb -o x.ply
+    grep -q "short.pdb:1:" err.txt || fail "a short record is not named with its line: $(cat err.txt)"
+    printf '0 0 0 -1\n' > neg.xyzr
+    run 3 "$bin" skin neg.xyzr -o x.ply
+    printf 'data_x\nloop_\n_atom_site.id\n' > bad.cif
+    run 3 "$bin" skin bad.cif -o x.ply
+    grep -q "bad.cif" err.txt || fail "a bad mmCIF file is not named: $(cat err.txt)"
+    run 2 "$bin" skin odd.pdb -o x.ply --shrink 1.5
+    run 2 "$bin" skin odd.pdb -o x.xyz
+    run 3 "$bin" skin missing.pdb -o x.ply
+    ls x.* 2>/dev/null && fail "an output was written by a failed run"
+    true
     ;;
 probe_bad)
     expect() {  # expect CODE PATTERN ARGS...
