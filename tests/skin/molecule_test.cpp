@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "dynmesh/error.hpp"
 #include "test_support.hpp"
@@ -126,6 +127,44 @@ TEST(RadiusTable, BondiDefaultsAndTheSharedTable) {
     t.set("zn", 1.39);
     EXPECT_EQ(t.radius("Zn"), 1.39);
     EXPECT_THROW(t.set("C", 0), InvalidInput);
+}
+
+}  // namespace
+}  // namespace dynmesh
+
+namespace dynmesh {
+namespace {
+
+/// PDB through gemmi: every ATOM/HETATM record of 1UBQ but the waters (counted from the file's
+/// text here), each atom naming its line, whose columns 31-54 hold its centre.
+TEST(Molecule, PdbThroughGemmiKeepsTheRecordsAndTheirLines) {
+    const auto path = test::shared_data("molecules/1ubq.pdb");
+    std::ifstream in(path);
+    std::vector<std::string> lines;
+    std::size_t records = 0, waters = 0;
+    for (std::string line; std::getline(in, line);) {
+        lines.push_back(line);
+        if (line.rfind("ATOM  ", 0) == 0 || line.rfind("HETATM", 0) == 0) {
+            ++records;
+            if (line.substr(17, 3) == "HOH") ++waters;
+        }
+    }
+    ASSERT_GT(waters, 0u);
+    MoleculeReadReport report;
+    const auto atoms = read_pdb(path, RadiusTable::bondi(), {}, &report);
+    EXPECT_EQ(atoms.size(), records - waters);
+    EXPECT_EQ(report.skipped_water, waters);
+    for (const Atom& a : atoms) {
+        ASSERT_GT(a.line, 0u);
+        const std::string& l = lines[a.line - 1];
+        EXPECT_NEAR(std::stod(l.substr(30, 8)), a.center.x, 1e-9) << a.line;
+        EXPECT_NEAR(std::stod(l.substr(46, 8)), a.center.z, 1e-9) << a.line;
+        EXPECT_DOUBLE_EQ(a.radius, RadiusTable::bondi().radius(a.element)) << a.line;
+    }
+    MoleculeReadOptions keep;
+    keep.keep_water = true;
+    EXPECT_EQ(read_pdb(path, RadiusTable::bondi(), keep).size(), records);
+    EXPECT_EQ(read_molecule(path, RadiusTable::bondi()).size(), records - waters);
 }
 
 }  // namespace
