@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/format.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/skin/check.hpp"
 #include "dynmesh/skin/molecule.hpp"
@@ -40,14 +41,7 @@ std::vector<double> face_min_angles(const SurfaceMesh& mesh) {
     out.reserve(mesh.n_faces());
     for (Face f : mesh.faces()) {
         const auto v = mesh.face_vertices(f);
-        const Point3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
-        double best = 180;
-        for (int k = 0; k < 3; ++k) {
-            const Vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
-            const double c = dot(e1, e2) / std::max(norm(e1) * norm(e2), 1e-300);
-            best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / 3.14159265358979323846);
-        }
-        out.push_back(best);
+        out.push_back(rad_to_deg(min_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]))));
     }
     return out;
 }

@@ -6,27 +6,13 @@
 #include <vector>
 
 #include "dynmesh/geometry/format.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/skin/static_mesh.hpp"
 #include "dynmesh/skin/topology.hpp"
 
 namespace dynmesh {
 
-namespace {
-
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
-
-/// The smallest angle of triangle abc in degrees (law of cosines on the sorted sides).
-double min_angle(const Point3& a, const Point3& b, const Point3& c) {
-    const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
-    const double lmin = std::min({la, lb, lc});
-    if (!(lmin > 0)) return 0;
-    const double x = la == lmin ? lb : la, y = lc == lmin ? lb : lc;
-    const double cosv = std::clamp((x * x + y * y - lmin * lmin) / (2 * x * y), -1.0, 1.0);
-    return std::acos(cosv) * kDeg;
-}
-
-}  // namespace
 
 SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, const SkinMeshCheckOptions& options) {
     SkinMeshCheck out;
@@ -80,7 +66,7 @@ SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, 
     for (Face f : mesh.faces()) {
         const auto fv = mesh.face_vertices(f);
         const Point3 a = mesh.position(fv[0]), b = mesh.position(fv[1]), c = mesh.position(fv[2]);
-        const double angle = min_angle(a, b, c);
+        const double angle = rad_to_deg(min_angle(a, b, c));
         out.min_angle_deg = std::min(out.min_angle_deg, angle);
         below15 += angle < 15;
         below20 += angle < 20;
@@ -96,7 +82,7 @@ SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, 
             out.hausdorff_over_rho_max = std::max(out.hausdorff_over_rho_max, d / std::max(ev.rho, options.rho_floor));
             if (k == 0) {
                 const double cosv = dot(n, ev.gradient) / std::max(norm(n) * norm(ev.gradient), 1e-300);
-                const double dev = std::acos(std::clamp(cosv, -1.0, 1.0)) * kDeg;
+                const double dev = rad_to_deg(std::acos(std::clamp(cosv, -1.0, 1.0)));
                 if (cosv <= 0) ++out.inward_faces;
                 out.normal_dev_max_deg = std::max(out.normal_dev_max_deg, dev);
                 dev_sum += dev;

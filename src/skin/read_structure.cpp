@@ -121,6 +121,14 @@ std::vector<Atom> atoms_of(const gemmi::Structure& st, const detail::FileContext
     return atoms;
 }
 
+/// The report a reader fills: the caller's, or `local`, emptied and named with the format.
+MoleculeReadReport& fresh_report(MoleculeReadReport* report, MoleculeReadReport& local, const char* format) {
+    MoleculeReadReport& r = report ? *report : local;
+    r = {};
+    r.format = format;
+    return r;
+}
+
 }  // namespace
 
 std::vector<Atom> read_pdb(const std::filesystem::path& path, const RadiusTable& radii, const MoleculeReadOptions& options,
@@ -129,9 +137,7 @@ std::vector<Atom> read_pdb(const std::filesystem::path& path, const RadiusTable&
     const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
     const auto lines = scan_pdb_records(data, ctx);
     MoleculeReadReport local;
-    MoleculeReadReport& r = report ? *report : local;
-    r = {};
-    r.format = "pdb";
+    MoleculeReadReport& r = fresh_report(report, local, "pdb");
     gemmi::Structure st;
     try {
         st = gemmi::read_pdb_string(data, path.filename().string());
@@ -156,9 +162,7 @@ std::vector<Atom> read_mmcif(const std::filesystem::path& path, const RadiusTabl
     const detail::FileContext ctx(path);
     const std::string data = detail::load_file(path, ctx, kMaxScriptFileBytes);
     MoleculeReadReport local;
-    MoleculeReadReport& r = report ? *report : local;
-    r = {};
-    r.format = "mmcif";
+    MoleculeReadReport& r = fresh_report(report, local, "mmcif");
     gemmi::Structure st;
     try {
         const gemmi::cif::Document doc = gemmi::cif::read_memory(data.data(), data.size(), path.filename().string().c_str());
@@ -179,14 +183,12 @@ std::vector<Atom> read_molecule(const std::filesystem::path& path, const RadiusT
     if (ext == ".pdb" || ext == ".ent") return read_pdb(path, radii, options, report);
     if (ext == ".cif" || ext == ".mmcif") return read_mmcif(path, radii, options, report);
     MoleculeReadReport local;
-    MoleculeReadReport& r = report ? *report : local;
-    r = {};
     if (ext == ".pqr") {
-        r.format = "pqr";
+        fresh_report(report, local, "pqr");
         return read_pqr(path);
     }
     if (ext == ".xyzr") {
-        r.format = "xyzr";
+        fresh_report(report, local, "xyzr");
         return read_xyzr(path);
     }
     const detail::FileContext ctx(path);

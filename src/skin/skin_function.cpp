@@ -172,64 +172,46 @@ Vec3 SkinFunction::along_simplex(std::size_t k, const Vec3& u) const {
     return ud;
 }
 
-void SkinFunction::violated(std::size_t k, const Point3& x, std::vector<std::pair<double, std::size_t>>& out) const {
-    out.clear();
+template <class Fn>
+void SkinFunction::for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) const {
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x - sx.z;
     const Vec3 ud = along_simplex(k, u);
     const Vec3 un = u - ud;
-    const double tol = 1e-12 * scale_;
     const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
     if (sx.dim > 0) {
-        // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge;
-        // a negative coordinate of vertex i moves to the face without it.
+        // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge.
         const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
         double l0 = 1;
         for (int i = 0; i < sx.dim; ++i) {
             const double m = dot(dual_[k][std::size_t(i)], p);
             l0 -= m;
-            if (-m * longest_edge_[k] > tol)
-                if (auto f = neighbour(k, sx.vertices[std::size_t(i + 1)], -1)) out.emplace_back(-m * longest_edge_[k], *f);
+            fn(-m * longest_edge_[k], sx.vertices[std::size_t(i + 1)], -1);
         }
-        if (-l0 * longest_edge_[k] > tol)
-            if (auto f = neighbour(k, sx.vertices[0], -1)) out.emplace_back(-l0 * longest_edge_[k], *f);
+        fn(-l0 * longest_edge_[k], sx.vertices[0], -1);
     }
     // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex j
-    // (signed distance to that plane); a violated one moves to the coface δ ∪ {j}.
+    // (signed distance to that plane).
     const Point3 q = sx.z + un / s_;
     const double p0 = power(b0, q);
     for (int j : sx.link) {
         const WeightedPoint& bj = balls_[std::size_t(j)];
-        const double v = (p0 - power(bj, q)) / (2 * norm(bj.center - b0.center));
-        if (v > tol)
-            if (auto f = neighbour(k, -1, j)) out.emplace_back(v, *f);
+        fn((p0 - power(bj, q)) / (2 * norm(bj.center - b0.center)), -1, j);
     }
-    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+}
+
+void SkinFunction::violated(std::size_t k, const Point3& x, std::vector<Move>& out) const {
+    out.clear();
+    const double tol = 1e-12 * scale_;
+    for_each_constraint(k, x, [&](double amount, int drop, int add) {
+        if (amount > tol) out.push_back({amount, drop, add});
+    });
+    std::sort(out.begin(), out.end(), [](const Move& a, const Move& b) { return a.amount > b.amount; });
 }
 
 double SkinFunction::violation(std::size_t k, const Point3& x) const {
-    const SkinSimplex& sx = simplices_[k];
-    const Vec3 u = x - sx.z;
-    const Vec3 ud = along_simplex(k, u);
-    const Vec3 un = u - ud;
     double worst = -std::numeric_limits<double>::infinity();
-    const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
-    if (sx.dim > 0) {
-        const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
-        double l0 = 1;
-        for (int i = 0; i < sx.dim; ++i) {
-            const double m = dot(dual_[k][std::size_t(i)], p);
-            l0 -= m;
-            worst = std::max(worst, -m * longest_edge_[k]);
-        }
-        worst = std::max(worst, -l0 * longest_edge_[k]);
-    }
-    const Point3 q = sx.z + un / s_;
-    const double p0 = power(b0, q);
-    for (int j : sx.link) {
-        const WeightedPoint& bj = balls_[std::size_t(j)];
-        worst = std::max(worst, (p0 - power(bj, q)) / (2 * norm(bj.center - b0.center)));
-    }
+    for_each_constraint(k, x, [&](double amount, int, int) { worst = std::max(worst, amount); });
     return worst;
 }
 
@@ -273,18 +255,20 @@ std::size_t SkinFunction::locate_by_scan(const Point3& x) const {
 std::size_t SkinFunction::locate(const Point3& x, std::size_t hint) const {
     DYNMESH_CHECK(is_finite(x), "SkinFunction::locate: the point is not finite");
     std::size_t k = hint < simplices_.size() ? hint : 0;
-    std::vector<std::pair<double, std::size_t>> moves;
+    std::vector<Move> moves;
     std::vector<std::size_t> visited;
     for (std::size_t step = 0; step < simplices_.size() + 8; ++step) {
         violated(k, x, moves);
         if (moves.empty()) return k;
         visited.push_back(k);
         std::optional<std::size_t> next;
-        for (const auto& [amount, target] : moves)
-            if (std::find(visited.begin(), visited.end(), target) == visited.end()) {
+        for (const Move& m : moves) {
+            const std::optional<std::size_t> target = neighbour(k, m.drop, m.add);
+            if (target && std::find(visited.begin(), visited.end(), *target) == visited.end()) {
                 next = target;
                 break;
             }
+        }
         if (!next) break;
         k = *next;
     }
@@ -296,6 +280,12 @@ bool SkinFunction::in_mixed_cell(std::size_t k, const Point3& x) const {
     return violation(k, x) <= 1e-12 * scale_;
 }
 
+double SkinFunction::value_in(std::size_t k, const Point3& x) const {
+    const Vec3 u = x - simplices_[k].z;
+    const Vec3 ud = along_simplex(k, u);
+    return sqnorm(u - ud) / s_ - sqnorm(ud) / (1 - s_) + simplices_[k].W;
+}
+
 SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
     const SkinSimplex& sx = simplices_[k];
     const Vec3 u = x - sx.z;
@@ -303,7 +293,7 @@ SkinEvaluation SkinFunction::evaluate_in(std::size_t k, const Point3& x) const {
     const Vec3 un = u - ud;
     SkinEvaluation ev;
     ev.simplex = k;
-    ev.value = sqnorm(un) / s_ - sqnorm(ud) / (1 - s_) + sx.W;
+    ev.value = value_in(k, x);
     ev.gradient = (2 / s_) * un - (2 / (1 - s_)) * ud;
     // Φ_δ = uᵀAu + W with A = P_ν/s − P_δ/(1−s): κ = max |tᵀAt| over unit tangents / ‖Au‖.
     const auto A = [&](const Vec3& v) {

@@ -5,11 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <queue>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -119,7 +117,7 @@ private:
     double f_at(const Point3& x, std::size_t& hint) const {
         const std::size_t k = phi_.locate(x, hint);
         hint = k;
-        return phi_.evaluate_in(k, x).value - t_;
+        return phi_.value_in(k, x) - t_;
     }
 
     /// Φ − t at x and a radius around x that the skin does not enter: along any path
@@ -134,7 +132,7 @@ private:
         const std::size_t k = phi_.locate(x, hint);
         hint = k;
         const double g = norm(x - phi_.simplices()[k].z);
-        const double f = phi_.evaluate_in(k, x).value - t_;
+        const double f = phi_.value_in(k, x) - t_;
         const double c = 2 / std::min(phi_.shrink(), 1 - phi_.shrink());
         return {f, std::max(0.0, 0.999 * (std::sqrt(g * g + 2 * std::fabs(f) / c) - g))};
     }
@@ -142,9 +140,9 @@ private:
     /// A root of Φ = t on the segment [a, b] inside the mixed cell of simplex k, from that
     /// cell's quadric restricted to the line (exact up to rounding), if it has one there.
     std::optional<Point3> root_in_cell(std::size_t k, const Point3& a, const Point3& b) const {
-        const double f0 = phi_.evaluate_in(k, a).value - t_;
-        const double f1 = phi_.evaluate_in(k, b).value - t_;
-        const double fm = phi_.evaluate_in(k, a + 0.5 * (b - a)).value - t_;
+        const double f0 = phi_.value_in(k, a) - t_;
+        const double f1 = phi_.value_in(k, b) - t_;
+        const double fm = phi_.value_in(k, a + 0.5 * (b - a)) - t_;
         // f(τ) = f0 + β τ + α τ², τ in [0, 1].
         const double alpha = 2 * (f1 + f0 - 2 * fm), beta = f1 - f0 - alpha;
         double roots[2];
@@ -193,17 +191,18 @@ private:
         return a + (fa / (fa - fb)) * (b - a);
     }
 
-    void add_sample(const Point3& p, std::size_t hint, Cell near = Cell()) {
+    /// Inserts a sample; the null handle when it coincides with one already there.
+    Vertex add_sample(const Point3& p, std::size_t hint, Cell near = Cell()) {
         const std::size_t before = dt_.number_of_vertices();
         Vertex v = dt_.insert(to_k(p), near);
         if (dt_.number_of_vertices() == before) {
             ++report_.refused;
-            return;
+            return Vertex();
         }
         const SkinEvaluation ev = phi_.evaluate(p, hint);
         v->info().rho = ev.rho;
         v->info().hint = ev.simplex;
-        last_inserted_ = v;
+        return v;
     }
 
     /// Rays from each local minimum of Φ below t (born atoms) and each local maximum above t
@@ -251,7 +250,7 @@ private:
         report_.seeds = seeds.size();
         DYNMESH_CHECK(seeds.size() >= 4, "mesh_skin: the skin has too few seed points");
         std::size_t hint = 0;
-        for (const Point3& p : seeds) add_sample(p, hint);
+        for (const Point3& p : seeds) (void)add_sample(p, hint);
         DYNMESH_CHECK(dt_.dimension() == 3, "mesh_skin: the seed points are coplanar");
     }
 
@@ -383,17 +382,16 @@ private:
             DYNMESH_CHECK(dt_.number_of_vertices() < opt_.max_vertices,
                           "mesh_skin: more than max_vertices = " + std::to_string(opt_.max_vertices) +
                               " samples; raise the limit or the floor under the length scale");
-            last_inserted_ = Vertex();
-            add_sample(x.p, c->vertex(i0)->info().hint, c);
-            if (last_inserted_ == Vertex()) continue;
+            const Vertex v = add_sample(x.p, c->vertex(i0)->info().hint, c);
+            if (v == Vertex()) continue;
             (defect == Defect::Size ? report_.refined_size
                                     : defect == Defect::Shape ? report_.refined_shape : report_.refined_topology)++;
             star.clear();
-            dt_.incident_cells(last_inserted_, std::back_inserter(star));
+            dt_.incident_cells(v, std::back_inserter(star));
             for (Cell s : star) {
                 for (int k = 0; k < 4; ++k) {
                     const Cell n = s->neighbor(k);
-                    if (n->has_vertex(last_inserted_) && n < s) continue;  // shared facet, tested once
+                    if (n->has_vertex(v) && n < s) continue;  // shared facet, tested once
                     test_facet(s, k);
                 }
             }
@@ -441,7 +439,6 @@ private:
     double scale2_ = 1;
     DT dt_;
     std::priority_queue<BadFacet> queue_;
-    Vertex last_inserted_;
     SkinMeshReport report_;
 };
 

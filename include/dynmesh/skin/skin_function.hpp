@@ -65,6 +65,8 @@ public:
     [[nodiscard]] bool in_mixed_cell(std::size_t k, const Point3& x) const;
     /// Φ_δ, ∇Φ_δ and ϱ of simplex k's quadric at x (anywhere: the patch extended).
     [[nodiscard]] SkinEvaluation evaluate_in(std::size_t k, const Point3& x) const;
+    /// Φ_δ alone (no gradient or curvature).
+    [[nodiscard]] double value_in(std::size_t k, const Point3& x) const;
 
     /// At s = 1/2: the point x0 moved along the orthogonal trajectory of simplex k's quadric
     /// (velocity ∇Φ/‖∇Φ‖², so Φ grows at rate 1) from its level Φ_k(x0) to the level t, in
@@ -83,9 +85,18 @@ public:
 private:
     /// The violation of x's membership in μ_k (≤ 0 inside), relative to the simplex's scale.
     [[nodiscard]] double violation(std::size_t k, const Point3& x) const;
-    /// Every constraint of μ_k that x violates by more than the tolerance, as (violation,
-    /// simplex a walk moves to through it), most violated first.
-    void violated(std::size_t k, const Point3& x, std::vector<std::pair<double, std::size_t>>& out) const;
+    /// Calls fn(amount, drop, add) for each constraint of μ_k at x: the barycentric coordinate
+    /// of ball `drop` in δ (add = −1), or the power bisector with link ball `add` (drop = −1);
+    /// amount > 0 is a violation, relative to the simplex's scale.
+    template <class Fn>
+    void for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) const;
+    /// A walk's move out of μ_k: to δ without ball `drop`, or with ball `add`.
+    struct Move {
+        double amount = 0;
+        int drop = -1, add = -1;
+    };
+    /// Every constraint of μ_k that x violates by more than the tolerance, most violated first.
+    void violated(std::size_t k, const Point3& x, std::vector<Move>& out) const;
     /// The simplex δ of simplex k without (drop ≥ 0) or with (add ≥ 0) one ball.
     [[nodiscard]] std::optional<std::size_t> neighbour(std::size_t k, int drop, int add) const;
 
