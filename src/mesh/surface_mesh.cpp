@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/triangle.hpp"
@@ -633,6 +634,115 @@ void SurfaceMesh::reindex(std::span<const std::uint32_t> vkeep, std::span<const 
     vprops_.compact(vkeep);
     eprops_.compact(ekeep);
     fprops_.compact(fkeep);
+}
+
+// ---- surgery -----------------------------------------------------------------------------------
+
+std::vector<Face> SurfaceMesh::replace_faces(std::span<const Face> remove,
+                                             std::span<const std::array<Vertex, 3>> add) {
+    const std::string where = "replace_faces: ";
+    std::unordered_set<std::uint32_t> removed;
+    for (Face f : remove) {
+        if (!is_valid(f) || is_deleted(f))
+            throw InvalidInput(where + "face " + std::to_string(f.idx()) + " is invalid or deleted");
+        removed.insert(f.idx());
+    }
+    // The halfedges of removed triangles whose twin stays: the hole's slots, by (from, to).
+    std::unordered_map<std::uint64_t, std::uint32_t, PairHash> slots;
+    std::vector<Edge> dead_edges;
+    std::unordered_set<std::uint32_t> touched;
+    for (std::uint32_t fi : removed) {
+        const Halfedge h0 = halfedge(Face(fi));
+        Halfedge h = h0;
+        do {
+            touched.insert(to_vertex(h).idx());
+            const Face other = face(twin(h));
+            if (other.is_valid() && removed.count(other.idx()) == 0)
+                slots.emplace(key(from_vertex(h).idx(), to_vertex(h).idx()), h.idx());
+            else if (h.idx() < twin(h).idx() || !other.is_valid())
+                dead_edges.push_back(edge(h));
+            h = next(h);
+        } while (h != h0);
+    }
+    // Every directed edge of the added triangles: a slot, or a new edge used both ways.
+    std::unordered_map<std::uint64_t, int, PairHash> fresh;  // (a, b) -> uses
+    std::size_t slots_used = 0;
+    for (std::size_t t = 0; t < add.size(); ++t) {
+        const auto& tri = add[t];
+        const std::string at = where + "triangle " + std::to_string(t);
+        for (Vertex v : tri)
+            if (!is_valid(v) || is_deleted(v))
+                throw InvalidInput(at + " uses an invalid or deleted vertex " + std::to_string(v.idx()));
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+            throw InvalidInput(at + " repeats a vertex");
+        for (int i = 0; i < 3; ++i) {
+            const Vertex a = tri[i], b = tri[(i + 1) % 3];
+            const std::uint64_t k = key(a.idx(), b.idx());
+            if (slots.count(k)) {
+                if (fresh.count(k)) throw InvalidInput(at + " uses a boundary edge twice");
+                fresh[k] = 1;
+                ++slots_used;
+                continue;
+            }
+            if (fresh.count(k))
+                throw InvalidInput(at + ": edge (" + std::to_string(a.idx()) + ", " +
+                                   std::to_string(b.idx()) + ") is used twice in one direction");
+            const Halfedge existing = find_halfedge(a, b);
+            if (existing.is_valid() && face(existing).is_valid() && removed.count(face(existing).idx()) == 0)
+                throw InvalidInput(at + ": edge (" + std::to_string(a.idx()) + ", " +
+                                   std::to_string(b.idx()) + ") is already used in this direction by a kept triangle");
+            fresh[k] = 1;
+        }
+    }
+    if (slots_used != slots.size())
+        throw InvalidInput(where + std::to_string(slots.size() - slots_used) +
+                           " edges of the hole's boundary are left open");
+    for (const auto& [k, uses] : fresh) {
+        (void)uses;
+        if (slots.count(k)) continue;
+        const std::uint64_t back = (k << 32) | (k >> 32);
+        if (!fresh.count(back))
+            throw InvalidInput(where + "the added triangles leave edge (" + std::to_string(k >> 32) + ", " +
+                               std::to_string(k & 0xffffffffu) + ") open");
+    }
+
+    // Apply: delete, then link the new triangles into the slots and new edges.
+    for (std::uint32_t fi : removed) delete_face(Face(fi));
+    for (Edge e : dead_edges) delete_edge(e);
+    for (const auto& [k, h] : slots) hface_[h] = kInvalid;
+    std::unordered_map<std::uint64_t, std::uint32_t, PairHash> half;  // (a, b) -> halfedge a -> b
+    for (const auto& [k, h] : slots) half.emplace(k, h);
+    std::vector<Face> faces;
+    faces.reserve(add.size());
+    std::unordered_set<std::uint32_t> in_new;
+    for (const auto& tri : add) {
+        std::array<Halfedge, 3> hs;
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = tri[i].idx(), b = tri[(i + 1) % 3].idx();
+            auto it = half.find(key(a, b));
+            if (it == half.end()) {
+                const Halfedge h = new_edge(Vertex(a), Vertex(b));
+                half.emplace(key(a, b), h.idx());
+                half.emplace(key(b, a), twin(h).idx());
+                hs[i] = h;
+            } else {
+                hs[i] = Halfedge(it->second);
+            }
+            in_new.insert(a);
+        }
+        const Face f = new_face();
+        link_triangle(hs[0], hs[1], hs[2], f);
+        for (int i = 0; i < 3; ++i) set_halfedge(tri[i], hs[i]);
+        faces.push_back(f);
+    }
+    for (std::uint32_t v : touched)
+        if (in_new.count(v) == 0) {
+            // A vertex of the removed region that no added triangle uses: every triangle around
+            // it was removed (a kept one would have left a slot at it).
+            vhalfedge_[v] = kInvalid;
+            delete_vertex(Vertex(v));
+        }
+    return faces;
 }
 
 }  // namespace dynmesh

@@ -120,6 +120,69 @@ TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
     }
 }
 
+TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
+    // Sphere A at the origin, its mirror image B at x = 3 (a second component added by
+    // replace_faces with nothing removed), then a tube between the caps around A's +x pole
+    // and B's -x pole: one sphere again. Then the whole component goes.
+    SurfaceMesh m = test::icosphere(2);
+    const std::size_t n = m.vertices_size();
+    std::vector<std::array<Vertex, 3>> b_tris;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Point3 p = m.position(Vertex(static_cast<std::uint32_t>(i)));
+        (void)m.add_vertex({3.0 - p.x, p.y, p.z});
+    }
+    const auto mirror = [&](Vertex v) { return Vertex(static_cast<std::uint32_t>(v.idx() + n)); };
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        b_tris.push_back({mirror(v[0]), mirror(v[2]), mirror(v[1])});
+    }
+    (void)m.replace_faces({}, b_tris);
+    {
+        const auto r = check_mesh(m, {.require_closed = true});
+        ASSERT_TRUE(r.ok()) << r.summary("  ");
+        EXPECT_EQ(r.components, 2u);
+        EXPECT_EQ(r.euler, 4);
+    }
+    Vertex pole = *m.vertices().begin();
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (m.position(Vertex(i)).x > m.position(pole).x) pole = Vertex(i);
+    const std::vector<Vertex> ring = m.neighbors(pole);  // counter-clockwise around the pole
+    std::vector<Face> cut;
+    for (Halfedge h : m.outgoing_halfedges(pole)) cut.push_back(m.face(h));
+    for (Halfedge h : m.outgoing_halfedges(mirror(pole))) cut.push_back(m.face(h));
+    const std::size_t k = ring.size();
+    std::vector<std::array<Vertex, 3>> tube;
+    for (std::size_t i = 0; i < k; ++i) {
+        const Vertex l0 = ring[i], l1 = ring[(i + 1) % k];
+        tube.push_back({l0, l1, mirror(l1)});
+        tube.push_back({l0, mirror(l1), mirror(l0)});
+    }
+    // A tube missing one quad leaves the hole open: refused, mesh unchanged.
+    std::vector<std::array<Vertex, 3>> short_tube(tube.begin(), tube.end() - 2);
+    EXPECT_THROW((void)m.replace_faces(cut, short_tube), InvalidInput);
+    EXPECT_EQ(m.n_faces(), 2 * 320u);
+    // Reversed triangles use the boundary edges the wrong way round: refused too.
+    std::vector<std::array<Vertex, 3>> reversed;
+    for (const auto& t : tube) reversed.push_back({t[0], t[2], t[1]});
+    EXPECT_THROW((void)m.replace_faces(cut, reversed), InvalidInput);
+    expect_valid_closed(m, 4, "after refused replacements");
+
+    const auto added = m.replace_faces(cut, tube);
+    EXPECT_EQ(added.size(), 2 * k);
+    EXPECT_TRUE(m.is_deleted(pole));
+    {
+        const auto r = check_mesh(m, {.require_closed = true});
+        ASSERT_TRUE(r.ok()) << r.summary("  ");
+        EXPECT_EQ(r.components, 1u);
+        EXPECT_EQ(r.euler, 2);
+    }
+    std::vector<Face> all(m.faces().begin(), m.faces().end());
+    (void)m.replace_faces(all, {});
+    EXPECT_EQ(m.n_faces(), 0u);
+    EXPECT_EQ(m.n_vertices(), 0u);
+    EXPECT_EQ(m.n_edges(), 0u);
+}
+
 TEST(SurfaceMesh, RefusesOperationsThatDegenerate) {
     // Removing a vertex of a tetrahedron would leave two copies of one triangle.
     TriangleSoup t;

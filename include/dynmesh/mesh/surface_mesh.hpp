@@ -253,6 +253,18 @@ public:
     /// \pre is_collapse_ok(h) (checked in debug builds).
     void collapse(Halfedge h);
 
+    /// Replaces the triangles `remove` of a closed mesh by `add` (vertex triples, oriented like
+    /// the mesh), keeping it closed: every edge between a removed and a kept triangle must be
+    /// used once by an added triangle in the direction the removed one used, and every other
+    /// edge of the added triangles twice, in opposite directions. Edges between two removed
+    /// triangles are deleted, and so are vertices left with no triangle. Surgery (topology
+    /// changes), new components (`remove` empty) and deleted components (`add` empty) are
+    /// all this one operation. Returns the new faces, in the order of `add`.
+    /// \throw InvalidInput when a handle is invalid or deleted, a triangle repeats a vertex, or
+    ///        the added triangles do not close the hole as above (the mesh is then unchanged).
+    std::vector<Face> replace_faces(std::span<const Face> remove,
+                                    std::span<const std::array<Vertex, 3>> add);
+
     /// Removes interior vertex v and fills its link polygon with `triangles`, whose indices
     /// refer to `neighbors(v)` (in that counter-clockwise order). The triangles must be a
     /// triangulation of the polygon consistent with its orientation (k - 2 triangles,
