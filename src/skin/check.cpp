@@ -64,6 +64,10 @@ SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, 
                                         {0.5, 0, 0.5},           {0.25, 0.25, 0.5},       {0.25, 0.5, 0.25},
                                         {0.5, 0.25, 0.25}};
     for (Face f : mesh.faces()) {
+        if (f.idx() < options.exempt.size() && options.exempt[f.idx()]) {
+            ++out.exempt_faces;
+            continue;
+        }
         const auto fv = mesh.face_vertices(f);
         const Point3 a = mesh.position(fv[0]), b = mesh.position(fv[1]), c = mesh.position(fv[2]);
         const double angle = rad_to_deg(min_angle(a, b, c));
@@ -89,7 +93,7 @@ SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, 
             }
         }
     }
-    const double nf = double(std::max<std::size_t>(mesh.n_faces(), 1));
+    const double nf = double(std::max<std::size_t>(mesh.n_faces() - out.exempt_faces, 1));
     out.frac_angles_below_15 = double(below15) / nf;
     out.frac_angles_below_20 = double(below20) / nf;
     out.frac_below_floor = double(below_floor) / nf;

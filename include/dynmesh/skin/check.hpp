@@ -18,6 +18,9 @@ struct SkinMeshCheckOptions {
     double rho_floor = 0;        ///< ϱ below this counts as this (the mesher's floor)
     double max_normal_deviation_deg = 25;
     double max_vertex_offset = 1e-9;  ///< |Φ − t|/‖∇Φ‖ over the skin's extent
+    /// Per face index, the triangles exempt from the bounds (surgery templates of a growing
+    /// skin, §3.3): measured for topology and vertex offsets only. Empty: none.
+    std::vector<bool> exempt;
 };
 
 struct SkinMeshCheck {
@@ -39,6 +42,7 @@ struct SkinMeshCheck {
     double normal_dev_mean_deg = 0;
     double vertex_offset_max = 0;       ///< max |Φ − t|/‖∇Φ‖ over vertices, relative to the extent
     std::size_t inward_faces = 0;       ///< triangles whose normal opposes ∇Φ
+    std::size_t exempt_faces = 0;       ///< triangles left out of the angle, distance and normal measures
     [[nodiscard]] bool ok() const { return problems.empty(); }
 };
 
