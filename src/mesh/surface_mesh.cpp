@@ -48,6 +48,12 @@ Vertex SurfaceMesh::add_vertex(const Point3& p) {
     return Vertex(static_cast<std::uint32_t>(positions_.size() - 1));
 }
 
+void SurfaceMesh::remove_isolated_vertex(Vertex v) {
+    if (!is_valid(v) || is_deleted(v) || !is_isolated(v))
+        throw InvalidInput("remove_isolated_vertex: " + vstr(v.idx()) + " is invalid, deleted or not isolated");
+    delete_vertex(v);
+}
+
 Halfedge SurfaceMesh::new_edge(Vertex from, Vertex to) {
     const auto h = static_cast<std::uint32_t>(hto_.size());
     hto_.push_back(to.idx());

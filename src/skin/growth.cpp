@@ -692,8 +692,12 @@ private:
     void surgery_on(std::uint32_t id) {
         Surgery& s = surgeries_[id];
         if (s.cancelled) return;
-        double r = s.r;
-        for (int attempt = 0; attempt < 4; ++attempt, r *= 0.8) {
+        // The ball of §3.3 first, then smaller ones (more than two loops), then larger ones:
+        // a critical point whose cell is tiny next to the mesh there (a near-degenerate
+        // simplex) has no vertex in its ball, and the cut must reach the mesh around it.
+        std::vector<double> radii{s.r, 0.8 * s.r, 0.64 * s.r};
+        for (double grow = 1.5; radii.size() < 24; grow *= 1.5) radii.push_back(grow * s.r);
+        for (double r : radii) {
             const std::vector<Vertex> inside = vertices_near(s.z, r);
             if (inside.empty()) continue;
             std::unordered_set<std::uint32_t> fs;
@@ -707,7 +711,9 @@ private:
                 return;
             }
         }
-        remesh("no two boundary loops around the critical point");
+        remesh(std::string(s.dim == 1 ? "neck" : "tunnel") + " at z = (" + std::to_string(s.z.x) + ", " +
+               std::to_string(s.z.y) + ", " + std::to_string(s.z.z) + "), r = " + std::to_string(s.r) +
+               ": no template fits (" + last_template_failure_ + ")");
         s.cancelled = true;
     }
 
@@ -756,11 +762,21 @@ private:
     /// phase at time `at`, its new vertices tagged with the surgery.
     bool apply_template(const Surgery& s, std::uint32_t id, const std::vector<Face>& cut, double at) {
         std::vector<std::vector<Vertex>> loops;
-        if (!boundary_loops(mesh_, cut, loops) || loops.size() != 2) return false;
+        if (!boundary_loops(mesh_, cut, loops)) {
+            last_template_failure_ = "the cut region's boundary is not simple";
+            return false;
+        }
+        if (loops.size() != 2) {
+            last_template_failure_ = std::to_string(loops.size()) + " boundary loops";
+            return false;
+        }
         for (auto& loop : loops)
             for (Vertex v : loop) (void)pos(v);
         TemplatePlan plan;
-        if (!plan_template(s, at, loops, [&](Vertex v) { return mesh_.position(v); }, plan)) return false;
+        if (!plan_template(s, at, loops, [&](Vertex v) { return mesh_.position(v); }, plan)) {
+            last_template_failure_ = "the loops are not on both sides of the waist, or do not wind around the axis";
+            return false;
+        }
         std::vector<Vertex> created;
         for (const Point3& p : plan.points) created.push_back(new_vertex(p, s.simplex, at, static_cast<int>(id)));
         std::vector<std::array<Vertex, 3>> tris;
@@ -771,11 +787,9 @@ private:
         }
         try {
             (void)mesh_.replace_faces(cut, tris);
-        } catch (const InvalidInput&) {
-            for (Vertex v : created) vtag_[v.idx()] = -1;
-            std::vector<std::array<Vertex, 3>> none;
-            // The unused template vertices are isolated: leave them deleted.
-            for (Vertex v : created) (void)v;
+        } catch (const InvalidInput& e) {
+            last_template_failure_ = e.what();
+            for (Vertex v : created) mesh_.remove_isolated_vertex(v);
             return false;
         }
         fit_arrays();
@@ -784,15 +798,32 @@ private:
 
     /// The fallback of §3.3: the whole mesh rebuilt by the static mesher at the current time.
     void remesh(const std::string& why) {
-        (void)why;
         ++c().fallbacks;
+        if (report_.fallback_reasons.size() < 10)
+            report_.fallback_reasons.push_back("t = " + std::to_string(t_) + ": " + why);
         SkinMeshOptions mo;
         mo.time = t_;
         mo.quality = q_;
         mo.rho_floor_factor = o_.rho_floor_factor;
-        SkinMeshResult r = mesh_skin(phi_, mo);
+        // Next to a critical point the static mesher may not resolve the pinch: mesh a little
+        // earlier instead, and let the vertices flow to now.
+        SkinMeshResult r;
+        double at = t_;
+        const double h = 1e-3 * (report_.t_end - report_.t_start);
+        for (int attempt = 0;; ++attempt) {
+            try {
+                mo.time = at;
+                r = mesh_skin(phi_, mo);
+                break;
+            } catch (const Error& e) {
+                if (attempt == 4)
+                    throw InternalError("grow_skin: remeshing at t = " + std::to_string(t_) + " (" + why +
+                                        ") failed: " + e.what());
+                at = t_ - h * double(1 << attempt);
+            }
+        }
         mesh_ = std::move(r.mesh);
-        vt_.assign(mesh_.vertices_size(), t_);
+        vt_.assign(mesh_.vertices_size(), at);
         vtag_.assign(mesh_.vertices_size(), -1);
         vcell_.assign(mesh_.vertices_size(), 0);
         std::size_t hint = 0;
@@ -873,6 +904,7 @@ private:
     double step_min_ = kInf;
     bool step_pending_ = false;
     std::uint32_t epoch_ = 0;
+    std::string last_template_failure_ = "no vertex in the ball";
     SkinGrowthReport report_;
 };
 

@@ -176,6 +176,11 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
         EXPECT_EQ(r.components, 1u);
         EXPECT_EQ(r.euler, 2);
     }
+    // An unused vertex can go on its own; one in use cannot.
+    const Vertex lone = m.add_vertex({9, 9, 9});
+    EXPECT_THROW(m.remove_isolated_vertex(*m.vertices().begin()), InvalidInput);
+    m.remove_isolated_vertex(lone);
+    EXPECT_TRUE(m.is_deleted(lone));
     std::vector<Face> all(m.faces().begin(), m.faces().end());
     (void)m.replace_faces(all, {});
     EXPECT_EQ(m.n_faces(), 0u);

@@ -96,6 +96,29 @@ probe_bad)
     expect_error "missing.obj" /usr/bin/python3 "$scripts/plot_probe.py" o.png torus.obj missing.obj
     [ ! -e o.png ] || fail "a PNG was written for a bad input"
     ;;
+skin)
+    make_inputs
+    /usr/bin/python3 -c "
+import math
+with open('rho.txt', 'w') as f:
+    for i in range(32 * 12):
+        f.write(f'{0.1 + 0.3 * (1 + math.sin(i / 7.0))}\\n')
+"
+    /usr/bin/python3 "$scripts/plot_skin.py" skin.png torus.obj rho.txt --title "torus by rho" > log.txt
+    is_png skin.png
+    grep -q "wrote skin.png" log.txt || fail "no 'wrote' line"
+    ;;
+skin_bad)
+    make_inputs
+    printf '0.5\n0.5\n' > short.txt
+    expect_error "short.txt: 2 values for 384 vertices" /usr/bin/python3 "$scripts/plot_skin.py" o.png torus.obj short.txt
+    /usr/bin/python3 -c "print('\n'.join(['0.5'] * 100 + ['half'] + ['0.5'] * 283))" > word.txt
+    expect_error "word.txt:101: not a number" /usr/bin/python3 "$scripts/plot_skin.py" o.png torus.obj word.txt
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' > bad_index.obj
+    printf '1\n1\n1\n' > three.txt
+    expect_error "bad_index.obj:4:" /usr/bin/python3 "$scripts/plot_skin.py" o.png bad_index.obj three.txt
+    [ ! -e o.png ] || fail "a PNG was written for a bad input"
+    ;;
 sweep)
     cat > sweep.csv <<'CSV'
 # surface,eps,... one row per run

@@ -228,6 +228,8 @@ public:
     // ---- construction and local operations -----------------------------------------------
     /// Adds an isolated vertex.
     Vertex add_vertex(const Point3& p);
+    /// Deletes an isolated vertex (one no edge uses). \throw InvalidInput otherwise.
+    void remove_isolated_vertex(Vertex v);
 
     /// True when e is interior, its two opposite vertices differ, and the other diagonal
     /// is not already an edge (a flip would otherwise create a duplicate edge).

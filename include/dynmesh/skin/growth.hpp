@@ -110,6 +110,8 @@ struct SkinGrowthReport {
     double seconds = 0;
     /// The first violations, one line each (element, time, ratio, previous check, where).
     std::vector<std::string> violation_examples;
+    /// Why each surgery fell back to remeshing (the first ten).
+    std::vector<std::string> fallback_reasons;
 };
 
 struct SkinGrowthResult {
