@@ -290,6 +290,7 @@ private:
         if (mesh_.is_deleted(e) || exempt(e)) return;
         const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
         ++c().checks_edge;
+        budget(mesh_.position(a));
         const Point3 pa = pos(a), pb = pos(b);
         const Measure m = edge_measure(pa, pb, rho_at(pa, vcell_[a.idx()]), rho_at(pb, vcell_[b.idx()]));
         ElementState& st = edges_[e.idx()];
@@ -326,8 +327,10 @@ private:
             }
             if (contract(e)) return;
             ++c().refused_contractions;
+            // Refused (link condition or a fold): look again later, not sooner than 1e-3·ϱ0²,
+            // so that a stuck edge cannot stall the clock.
             const double g = std::max(gamma, q_.Q0 / q_.Q1 * (1 + 1e-6));
-            schedule(e, t_ + std::max(edge_safe_duration(g, m.rho0, q_), 1e-6 * m.rho0 * m.rho0));
+            schedule(e, t_ + std::max(edge_safe_duration(g, m.rho0, q_), 1e-3 * m.rho0 * m.rho0));
             return;
         }
         schedule(e, t_ + edge_safe_duration(gamma, m.rho0, q_));
@@ -337,6 +340,7 @@ private:
         if (mesh_.is_deleted(f) || exempt(f)) return;
         const auto v = mesh_.face_vertices(f);
         ++c().checks_triangle;
+        budget(mesh_.position(v[0]));
         std::array<Point3, 3> p;
         std::array<double, 3> r{};
         for (int i = 0; i < 3; ++i) {
@@ -380,7 +384,7 @@ private:
             if (insert(f)) return;
             ++c().refused_insertions;
             const double g = std::min(gamma, q_.Q1 / q_.Q0 * (1 - 1e-6));
-            schedule(f, t_ + std::max(triangle_safe_duration(g, m.rho0, q_), 1e-6 * m.rho0 * m.rho0));
+            schedule(f, t_ + std::max(triangle_safe_duration(g, m.rho0, q_), 1e-3 * m.rho0 * m.rho0));
             return;
         }
         schedule(f, t_ + triangle_safe_duration(gamma, m.rho0, q_));
@@ -405,6 +409,13 @@ private:
                     std::to_string(surgeries_[near].W) + ", window [" + std::to_string(surgeries_[near].t_on) + ", " +
                     std::to_string(surgeries_[near].t_off) + "]";
         report_.violation_examples.push_back(line);
+    }
+
+    void budget(const Point3& where) {
+        if (c().checks() <= o_.max_checks) return;
+        throw InternalError("grow_skin: more than " + std::to_string(o_.max_checks) + " checks by t = " +
+                            std::to_string(t_) + ": the mesh does not settle near (" + std::to_string(where.x) + ", " +
+                            std::to_string(where.y) + ", " + std::to_string(where.z) + ")");
     }
 
     /// Samples 19 times strictly between `since` and now: does `beyond` hold at one of them?
@@ -536,6 +547,7 @@ private:
         refresh_around({gone, kept}, 2);
         std::size_t cell = vcell_[kept.idx()];
         const Point3 m = project_to_skin(phi_, 0.5 * (mesh_.position(gone) + mesh_.position(kept)), t_, cell);
+        if (!is_finite(m)) return false;
         const Vec3 grad = phi_.evaluate_in(cell, m).gradient;
         for (Vertex v : {gone, kept})
             for (Halfedge o : mesh_.outgoing_halfedges(v)) {
@@ -589,11 +601,13 @@ private:
         const Point3 a = mesh_.position(v[0]), b = mesh_.position(v[1]), p = mesh_.position(v[2]);
         std::size_t cell = vcell_[v[0].idx()];
         const double R = circumradius(a, b, p);
-        Point3 target = project_to_skin(phi_, circumcenter(a, b, p), t_, cell);
-        if (!is_finite(target) || norm(target - circumcenter(a, b, p)) > 2 * R) {
+        const Point3 cc = circumcenter(a, b, p);  // not finite for a degenerate triangle
+        Point3 target = is_finite(cc) ? project_to_skin(phi_, cc, t_, cell) : cc;
+        if (!is_finite(target) || !(norm(target - cc) <= 2 * R)) {
             cell = vcell_[v[0].idx()];
             target = project_to_skin(phi_, (a + b + p) / 3.0, t_, cell);
         }
+        if (!is_finite(target)) return false;
         // The triangle nearest to the new point, among those two rings around f.
         Face nearest = f;
         double best = kInf;
@@ -777,6 +791,11 @@ private:
             last_template_failure_ = "the loops are not on both sides of the waist, or do not wind around the axis";
             return false;
         }
+        for (const Point3& p : plan.points)
+            if (!is_finite(p)) {
+                last_template_failure_ = "a template vertex is not finite";
+                return false;
+            }
         std::vector<Vertex> created;
         for (const Point3& p : plan.points) created.push_back(new_vertex(p, s.simplex, at, static_cast<int>(id)));
         std::vector<std::array<Vertex, 3>> tris;

@@ -76,6 +76,7 @@ Surgery make_surgery(const SkinFunction& phi, const SkinEvent& ev, double inradi
         s.axis = normalized(cross(balls[sx.vertices[1]].center - balls[sx.vertices[0]].center,
                                   balls[sx.vertices[2]].center - balls[sx.vertices[0]].center));
     }
+    if (!is_finite(s.axis) || norm(s.axis) < 0.5) s.axis = Vec3{0, 0, 1};
     const Vec3 helper = std::abs(s.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
     s.e1 = normalized(cross(s.axis, helper));
     s.e2 = cross(s.axis, s.e1);

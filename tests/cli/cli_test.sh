@@ -441,6 +441,53 @@ skin)
     grep -q "unknown molecule format" err.txt || fail "a .cin file was taken for a molecule: $(cat err.txt)"
     true
     ;;
+skin_grow)
+    # The growing skin of a bundled molecule with the auditor: zero missed checks, every
+    # snapshot a valid mesh with the alpha complex's topology (--check), a ParaView series
+    # with rho, and a PNG coloured by rho.
+    run 0 "$bin" skin "$data/molecules/small02.pdb" --grow --steps 8 --audit --check --out series \
+        -o final.vtp --png final.png --report g.json
+    for f in atoms vertices triangles euler components min_angle_deg frac_angles_below_15 \
+             hausdorff_over_rho_max normal_dev_max_deg checks actions violations born_bad seconds; do
+        json_get g.json "['$f']" >/dev/null || fail "report field $f missing"
+    done
+    [ "$(json_get g.json "['mode']")" = grow ] || fail "not a growth run"
+    [ "$(json_get g.json "['violations']")" = 0 ] || fail "missed checks: $(cat g.json)"
+    [ "$(json_get g.json "['check']['problems']")" = "[]" ] || fail "problems: $(cat g.json)"
+    [ "$(json_get g.json "['euler']")" = "$(json_get g.json "['expected_euler']")" ] || fail "Euler differs from the alpha complex"
+    python3 -c "import sys; d=__import__('json').load(open('g.json')); g=d['growth']; a=d['actions']
+sys.exit(0 if d['checks'] > 0 and g['audit_samples'] > 0 and a['birth'] >= 1 and a['neck'] >= 1 and g['snapshots'] == 8 else 1)" \
+        || fail "counters: $(cat g.json)"
+    [ "$(grep -c '<DataSet' series/skin.pvd)" = 8 ] || fail "the series does not list 8 snapshots"
+    for f in $(grep -o 'file="[^"]*"' series/skin.pvd | cut -d'"' -f2); do
+        [ -s "series/$f" ] || fail "series/$f missing"
+        grep -q 'Name="rho"' "series/$f" || fail "series/$f has no rho"
+    done
+    grep -q 'Name="min_angle_deg"' final.vtp || fail "final.vtp has no min_angle_deg"
+    [ "$(head -c 8 final.png | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || fail "final.png is not a PNG"
+    # The every-step baseline grows the same skin with more checks (three atoms: every step
+    # checks every element, too slow for a molecule in a test).
+    printf '0 0 0 1.7\n2.6 0.2 0 1.6\n1.2 2.3 0.1 1.5\n' > three.xyzr
+    run 0 "$bin" skin three.xyzr --grow --steps 2 --schedule every-step -q --check --report e.json
+    run 0 "$bin" skin three.xyzr --grow --steps 2 -q --check --report r.json
+    python3 -c "import sys, json; e=json.load(open('e.json')); r=json.load(open('r.json'))
+sys.exit(0 if e['checks'] > r['checks'] and e['growth']['steps'] > 1 and e['violations'] == 0 else 1)" \
+        || fail "every-step vs relaxed: $(cat e.json) $(cat r.json)"
+    true
+    ;;
+skin_grow_bad)
+    # Growth flags that make no sense are usage errors (exit 2), one line each.
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --shrink 0.3 -o x.ply
+    grep -q "shrink 0.5" err.txt || fail "--grow with s != 1/2: $(cat err.txt)"
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --schedule sometimes -o x.ply
+    grep -q "relaxed or every-step" err.txt || fail "bad --schedule: $(cat err.txt)"
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --out series -o x.ply
+    grep -q "needs --grow" err.txt || fail "--out without --grow: $(cat err.txt)"
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --steps 0 -o x.ply
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --png x.jpg -o x.ply
+    [ ! -e x.ply ] || fail "an output was written by a refused run"
+    true
+    ;;
 skin_bad)
     # Bad and odd molecules: a valid mesh, or a one-line error naming the file (and the line).
     atom() { printf '%-6s%5d %-4s%1s%3s %1s%4d%1s   %8s%8s%8s%6.2f%6.2f          %2s\n' "$@"; }

@@ -72,6 +72,9 @@ struct SkinGrowthOptions {
     double neighbourhood = 0.5;  ///< r_δ = neighbourhood · inradius(μ_δ) (§3.3)
     double inner = 0.5;          ///< δ_in: the window is while the skin is within δ_in·r_δ of z_δ
     double birth_radius = 0.05;  ///< births and deaths at radius birth_radius · inradius
+    /// The run stops with an error naming the time and the place when its checks exceed this
+    /// (a mesh that does not settle, instead of a run that never ends).
+    std::size_t max_checks = 200'000'000;
     /// Called at each snapshot time (vertices on the skin at that time).
     std::function<void(const SkinSnapshot&)> on_snapshot;
     /// Called about every 1% of the time span with the current time.
