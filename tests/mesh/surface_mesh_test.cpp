@@ -161,6 +161,8 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
     std::vector<std::array<Vertex, 3>> short_tube(tube.begin(), tube.end() - 2);
     EXPECT_THROW((void)m.replace_faces(cut, short_tube), InvalidInput);
     EXPECT_EQ(m.n_faces(), 2 * 320u);
+    // Removing the caps without filling them would leave a hole: refused too.
+    EXPECT_THROW((void)m.replace_faces(cut, {}), InvalidInput);
     // Reversed triangles use the boundary edges the wrong way round: refused too.
     std::vector<std::array<Vertex, 3>> reversed;
     for (const auto& t : tube) reversed.push_back({t[0], t[2], t[1]});
