@@ -1,6 +1,8 @@
 #include "cli_common.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -177,6 +179,13 @@ void require_valid_output(const SurfaceMesh& mesh, const std::string& command, b
 }
 
 // ---- plots ----------------------------------------------------------------------------------
+
+void require_png_output(const std::string& png, const std::string& script) {
+    std::string ext = std::filesystem::path(png).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".png") throw UsageError("--png " + png + ": expected a .png file");
+    if (const auto why = plotting_unavailable(script)) throw UsageError("--png: " + *why);
+}
 
 std::optional<std::string> plotting_unavailable(const std::string& name) {
     if (find_bundled_script(name).empty())

@@ -152,6 +152,9 @@ void require_valid_output(const SurfaceMesh& mesh, const std::string& command, b
 /// \throw IoError "<what>: drawing failed: <the script's last error line>" when it fails.
 void run_plot_script(const std::string& name, const std::vector<std::string>& args,
                      const std::string& what);
+/// Checked before any work: `png` names a .png file (any case) and `script` can run here.
+/// \throw UsageError "--png <png>: expected a .png file" or "--png: <why not>".
+void require_png_output(const std::string& png, const std::string& script);
 /// Why a plot cannot be drawn here (script or interpreter missing), or nullopt.
 [[nodiscard]] std::optional<std::string> plotting_unavailable(const std::string& name);
 

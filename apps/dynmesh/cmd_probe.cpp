@@ -119,12 +119,7 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     if (is_planar_object(a.object) != (a.dim == 2))
         throw UsageError(a.dim == 2 ? "--dim 2: the object must be a planar curve (circle2:R or star2:R), got " + a.object
                                     : a.object + " is a planar curve: give --dim 2");
-    if (!a.png.empty()) {
-        std::string ext = fs::path(a.png).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (ext != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
-        if (const auto why = plotting_unavailable("plot_probe.py")) throw UsageError("--png: " + *why);
-    }
+    if (!a.png.empty()) require_png_output(a.png, "plot_probe.py");
     std::vector<Point3> interior;
     for (const std::string& s : a.interior) {
         const auto v = parse_tuple(s, 3, "--interior");

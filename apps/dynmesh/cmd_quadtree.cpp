@@ -535,8 +535,7 @@ void run_quadtree(const QuadtreeArgs& a, RunContext& ctx) {
     if (offcenter && a.dim != 2) throw UsageError("--rho: the off-center mesher is 2D only (got --dim 3)");
     if (!a.png.empty()) {
         if (a.dim != 2) throw UsageError("--png: pictures are drawn for 2D meshes only (got --dim 3)");
-        if (lower_ext(a.png) != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
-        if (const auto why = plotting_unavailable("plot_mesh2d.py")) throw UsageError("--png: " + *why);
+        require_png_output(a.png, "plot_mesh2d.py");
     }
     const std::string ext = lower_ext(a.output);
     std::vector<std::string> allowed = kSimplexExtensions;

@@ -195,12 +195,7 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
         throw UsageError(std::string(a.audit ? "--audit" : "--out") + " needs --grow");
     if (a.grow && a.shrink != 0.5) throw UsageError("--grow needs --shrink 0.5 (the growth model is for s = 1/2)");
     if (a.grow && (a.steps < 1 || a.steps > 100000)) throw UsageError("--steps must be in [1, 100000]");
-    if (!a.png.empty()) {
-        std::string ext = fs::path(a.png).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (ext != ".png") throw UsageError("--png " + a.png + ": expected a .png file");
-        if (const auto why = plotting_unavailable("plot_skin.py")) throw UsageError("--png: " + *why);
-    }
+    if (!a.png.empty()) require_png_output(a.png, "plot_skin.py");
     std::vector<fs::path> inputs{fs::path(a.molecule)};
     if (!a.radii.empty()) inputs.emplace_back(a.radii);
     RunOutputs outputs(a.common, inputs);

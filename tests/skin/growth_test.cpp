@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dynmesh/error.hpp"
+#include "skin_inputs.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/skin/check.hpp"
 #include "dynmesh/skin/critical_events.hpp"
@@ -14,20 +15,8 @@
 namespace dynmesh {
 namespace {
 
-std::vector<WeightedPoint> four_balls(double w) {
-    std::vector<WeightedPoint> B;
-    for (const Point3& p : {Point3{1, -1, -1}, Point3{1, 1, 1}, Point3{-1, 1, -1}, Point3{-1, -1, 1}}) B.push_back({p, w});
-    return B;
-}
-
-std::vector<WeightedPoint> ring(int n, double R, double w) {
-    std::vector<WeightedPoint> B;
-    for (int k = 0; k < n; ++k) {
-        const double a = 2 * M_PI * k / n;
-        B.push_back({{R * std::cos(a), R * std::sin(a), 0.01 * (k % 3)}, w * (1 + 0.01 * (k % 2))});
-    }
-    return B;
-}
+using test::four_balls;
+using test::ring;
 
 TEST(SkinGrowth, InradiusBallLiesInTheMixedCell) {
     // Every critical simplex of a random set: points within the inradius of z_δ are in μ_δ,
@@ -113,7 +102,7 @@ TEST(SkinGrowth, FourBallsOpenAndCloseAVoid) {
 }
 
 TEST(SkinGrowth, RingOfEightMakesATorus) {
-    const auto rep = grow_and_check({"ring of 8", ring(8, 3.0, 2.0)}, SkinSchedule::Relaxed);
+    const auto rep = grow_and_check({"ring of 8", ring(8, 3.0, 2.0, 0.01)}, SkinSchedule::Relaxed);
     EXPECT_EQ(rep.counters.births, 8u);
     EXPECT_EQ(rep.counters.necks, 8u);
 }

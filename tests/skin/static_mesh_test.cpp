@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dynmesh/error.hpp"
+#include "skin_inputs.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/metrics/quality.hpp"
 #include "dynmesh/skin/critical_events.hpp"
@@ -14,20 +15,8 @@
 namespace dynmesh {
 namespace {
 
-std::vector<WeightedPoint> four_balls(double w) {
-    std::vector<WeightedPoint> B;
-    for (const Point3& p : {Point3{1, -1, -1}, Point3{1, 1, 1}, Point3{-1, 1, -1}, Point3{-1, -1, 1}}) B.push_back({p, w});
-    return B;
-}
-
-std::vector<WeightedPoint> ring(int n, double R, double w) {
-    std::vector<WeightedPoint> B;
-    for (int k = 0; k < n; ++k) {
-        const double a = 2 * M_PI * k / n;
-        B.push_back({{R * std::cos(a), R * std::sin(a), 0.01 * (k % 3)}, w});
-    }
-    return B;
-}
+using test::four_balls;
+using test::ring;
 
 /// The properties every static skin mesh must have (§6.3 M1, M4, M5 and the size bound [U]):
 /// a closed oriented manifold with the alpha complex's topology, vertices on the skin,
