@@ -213,8 +213,17 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
     ro.altloc = a.altloc[0];
     ro.model = a.model;
     MoleculeReadReport read;
-    const std::vector<Atom> atoms = read_molecule(a.molecule, radii, ro, &read);
-    const std::vector<WeightedPoint> balls = skin_weights(atoms, a.shrink);
+    // A .cin file (CGAL's skin input) holds the ball set itself: x y z w per line, w = r^2.
+    std::string ext = fs::path(a.molecule).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    const bool weighted = ext == ".cin";
+    std::vector<WeightedPoint> balls;
+    if (weighted) {
+        balls = read_weighted_points(a.molecule);
+        read.format = "cin";
+    } else {
+        balls = skin_weights(read_molecule(a.molecule, radii, ro, &read), a.shrink);
+    }
 
     progress.stage("building the mixed complex");
     const SkinFunction phi(balls, a.shrink);
@@ -239,7 +248,7 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
                           {"molecule", a.molecule},
                           {"format", read.format},
                           {"shrink", a.shrink},
-                          {"atoms", atoms.size()},
+                          {"atoms", balls.size()},
                           {"skipped", {{"water", read.skipped_water},
                                        {"hydrogens", read.skipped_hydrogens},
                                        {"altloc", read.skipped_altloc}}},
@@ -273,7 +282,7 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
     outputs.commit();
     if (!a.common.quiet) {
         std::ostringstream os;
-        os << std::setprecision(3) << "skin: " << atoms.size() << " atoms, " << o.mesh.n_vertices() << " vertices, "
+        os << std::setprecision(3) << "skin: " << balls.size() << (weighted ? " balls, " : " atoms, ") << o.mesh.n_vertices() << " vertices, "
            << o.mesh.n_faces() << " triangles, Euler " << chk.euler << ", " << chk.components
            << " component(s); min angle " << chk.min_angle_deg << " deg, " << 100 * chk.frac_angles_below_15
            << "% under 15 deg; Hausdorff/rho " << chk.hausdorff_over_rho_max << "; " << o.seconds << " s\n";
@@ -297,7 +306,7 @@ void register_skin(CLI::App& root, int& result) {
     CLI::App* sub = root.add_subcommand(
         "skin", "Mesh the skin surface of a molecule: a restricted Delaunay mesh whose triangles follow the "
                 "length scale of the skin (circumradius <= C Q0 rho, angles >= 30 deg)");
-    sub->add_option("molecule", args->molecule, "The molecule: .pdb/.ent, .cif/.mmcif (gemmi), .pqr or .xyzr")->required();
+    sub->add_option("molecule", args->molecule, "The molecule: .pdb/.ent, .cif/.mmcif (gemmi), .pqr or .xyzr; or the ball set itself as .cin (x y z w per line, w = r^2, as CGAL's skin examples)")->required();
     sub->add_option("-o,--output", args->output,
                     "The mesh (.off .obj .ply .vtk .vtp); .ply/.vtk/.vtp carry the vertex field rho and the "
                     "face field min_angle_deg");

@@ -437,8 +437,14 @@ skin)
         || fail "quality goals not met: $(cat s.json)"
     run 0 "$bin" skin "$data/molecules/bx6_7_lig_apbs.pqr" -q --report p.json
     [ "$(json_get p.json "['format']")" = pqr ] || fail "PQR not read as PQR"
-    run 3 "$bin" skin "$data/molecules/caffeine.cin" -o x.ply
-    grep -q "unknown molecule format" err.txt || fail "a .cin file was taken for a molecule: $(cat err.txt)"
+    # CGAL's own input, the ball set as weighted points: meshed as given (no r^2/s scaling).
+    run 0 "$bin" skin "$data/molecules/caffeine.cin" -q --check --report c.json
+    [ "$(json_get c.json "['format']")" = cin ] || fail "caffeine.cin not read as weighted points"
+    [ "$(json_get c.json "['atoms']")" = "$(grep -c . "$data/molecules/caffeine.cin")" ] || fail "caffeine.cin: ball count differs from its lines"
+    [ "$(json_get c.json "['euler']")" = "$(json_get c.json "['expected_euler']")" ] || fail "caffeine.cin: Euler differs from the alpha complex"
+    printf '0 0 0 1\n1 0 0\n' > bad.cin
+    run 3 "$bin" skin bad.cin -o x.ply
+    grep -q "bad.cin:2" err.txt || fail "a short .cin line is not named: $(cat err.txt)"
     true
     ;;
 skin_grow)
