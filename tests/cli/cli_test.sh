@@ -471,6 +471,14 @@ sys.exit(0 if d['checks'] > 0 and g['audit_samples'] > 0 and a['birth'] >= 1 and
     done
     grep -q 'Name="min_angle_deg"' final.vtp || fail "final.vtp has no min_angle_deg"
     [ "$(head -c 8 final.png | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || fail "final.png is not a PNG"
+    # The second bundled molecule, CGAL's caffeine ball set: zero missed checks under the auditor
+    # and the alpha complex's topology at every snapshot there too.
+    run 0 "$bin" skin "$data/molecules/caffeine.cin" --grow --steps 8 --audit --check -q --report c.json
+    [ "$(json_get c.json "['violations']")" = 0 ] || fail "caffeine.cin: missed checks: $(cat c.json)"
+    [ "$(json_get c.json "['check']['problems']")" = "[]" ] || fail "caffeine.cin: problems: $(cat c.json)"
+    [ "$(json_get c.json "['euler']")" = "$(json_get c.json "['expected_euler']")" ] || fail "caffeine.cin: Euler differs from the alpha complex"
+    python3 -c "import sys, json; d=json.load(open('c.json')); sys.exit(0 if d['growth']['audit_samples'] > 0 and d['actions']['birth'] == 23 else 1)" \
+        || fail "caffeine.cin: counters: $(cat c.json)"
     # The every-step baseline grows the same skin with more checks (three atoms: every step
     # checks every element, too slow for a molecule in a test).
     printf '0 0 0 1.7\n2.6 0.2 0 1.6\n1.2 2.3 0.1 1.5\n' > three.xyzr
