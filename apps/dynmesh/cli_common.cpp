@@ -161,10 +161,15 @@ void require_closed_manifold(const SurfaceMesh& mesh, const fs::path& path) {
                             "; zero-area triangles are refused: remove them first");
 }
 
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
 void require_writable_mesh_extension(const std::string& path) {
     const std::string ext = fs::path(path).extension().string();
-    std::string lower;
-    for (char c : ext) lower.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+    const std::string lower = lower_extension(path);
     std::string list;
     for (const std::string& e : writable_mesh_extensions()) {
         if (e == lower) return;
@@ -181,9 +186,7 @@ void require_valid_output(const SurfaceMesh& mesh, const std::string& command, b
 // ---- plots ----------------------------------------------------------------------------------
 
 void require_png_output(const std::string& png, const std::string& script) {
-    std::string ext = std::filesystem::path(png).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".png") throw UsageError("--png " + png + ": expected a .png file");
+    if (lower_extension(png) != ".png") throw UsageError("--png " + png + ": expected a .png file");
     if (const auto why = plotting_unavailable(script)) throw UsageError("--png: " + *why);
 }
 

@@ -140,6 +140,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0);
 ///        "<file>: face N is degenerate (zero area) ..." naming the first such face.
 void require_closed_manifold(const SurfaceMesh& mesh, const std::filesystem::path& path);
 
+/// The extension of `path` in lower case, with its dot (".pdb"), or "" when it has none.
+std::string lower_extension(const std::string& path);
+
 /// The mesh-writing commands check the output's extension before any work.
 /// \throw UsageError naming `path` and the writable extensions.
 void require_writable_mesh_extension(const std::string& path);

@@ -163,12 +163,6 @@ QuadtreeOptions<D> choose_domain(const std::string& spec, const std::vector<Poin
     }
 }
 
-std::string lower_ext(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-    return e;
-}
-
 bool contains(const std::vector<std::string>& v, const std::string& s) {
     return std::find(v.begin(), v.end(), s) != v.end();
 }
@@ -298,7 +292,7 @@ struct QmeshOutputs {
 template <int D>
 void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, QmeshOutputs& out) {
     constexpr auto kD = static_cast<std::size_t>(D);
-    const std::string ext = lower_ext(a.output);
+    const std::string ext = lower_extension(a.output);
     const bool simplex_out = contains(kSimplexExtensions, ext);
     const char* tree_name = D == 2 ? "quadtree" : "octree";
 
@@ -537,7 +531,7 @@ void run_quadtree(const QuadtreeArgs& a, RunContext& ctx) {
         if (a.dim != 2) throw UsageError("--png: pictures are drawn for 2D meshes only (got --dim 3)");
         require_png_output(a.png, "plot_mesh2d.py");
     }
-    const std::string ext = lower_ext(a.output);
+    const std::string ext = lower_extension(a.output);
     std::vector<std::string> allowed = kSimplexExtensions;
     if (a.dim == 2) allowed.insert(allowed.end(), kSoupExtensions2D.begin(), kSoupExtensions2D.end());
     if (!contains(allowed, ext))

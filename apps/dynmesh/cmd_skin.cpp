@@ -214,9 +214,7 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
     ro.model = a.model;
     MoleculeReadReport read;
     // A .cin file (CGAL's skin input) holds the ball set itself: x y z w per line, w = r^2.
-    std::string ext = fs::path(a.molecule).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    const bool weighted = ext == ".cin";
+    const bool weighted = lower_extension(a.molecule) == ".cin";
     std::vector<WeightedPoint> balls;
     if (weighted) {
         balls = read_weighted_points(a.molecule);

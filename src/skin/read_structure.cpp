@@ -22,12 +22,6 @@ namespace dynmesh {
 
 namespace {
 
-std::string lower_extension(const std::filesystem::path& p) {
-    std::string e = p.extension().string();
-    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
-
 /// Where each (model, serial) atom record of a PDB file is, after checking its coordinate
 /// columns 31–54 (three numbers of 8 columns each).
 std::map<std::pair<int, int>, std::size_t> scan_pdb_records(const std::string& data, const detail::FileContext& ctx) {
@@ -179,7 +173,7 @@ std::vector<Atom> read_mmcif(const std::filesystem::path& path, const RadiusTabl
 
 std::vector<Atom> read_molecule(const std::filesystem::path& path, const RadiusTable& radii, const MoleculeReadOptions& options,
                                 MoleculeReadReport* report) {
-    const std::string ext = lower_extension(path);
+    const std::string ext = detail::lower_extension(path);
     if (ext == ".pdb" || ext == ".ent") return read_pdb(path, radii, options, report);
     if (ext == ".cif" || ext == ".mmcif") return read_mmcif(path, radii, options, report);
     MoleculeReadReport local;

@@ -477,7 +477,8 @@ sys.exit(0 if d['checks'] > 0 and g['audit_samples'] > 0 and a['birth'] >= 1 and
     [ "$(json_get c.json "['violations']")" = 0 ] || fail "caffeine.cin: missed checks: $(cat c.json)"
     [ "$(json_get c.json "['check']['problems']")" = "[]" ] || fail "caffeine.cin: problems: $(cat c.json)"
     [ "$(json_get c.json "['euler']")" = "$(json_get c.json "['expected_euler']")" ] || fail "caffeine.cin: Euler differs from the alpha complex"
-    python3 -c "import sys, json; d=json.load(open('c.json')); sys.exit(0 if d['growth']['audit_samples'] > 0 and d['actions']['birth'] == 23 else 1)" \
+    balls=$(grep -c . "$data/molecules/caffeine.cin")
+    python3 -c "import sys, json; d=json.load(open('c.json')); sys.exit(0 if d['growth']['audit_samples'] > 0 and d['actions']['birth'] == $balls else 1)" \
         || fail "caffeine.cin: counters: $(cat c.json)"
     # The every-step baseline grows the same skin with more checks (three atoms: every step
     # checks every element, too slow for a molecule in a test).
