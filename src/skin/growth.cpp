@@ -725,6 +725,12 @@ private:
                 return;
             }
         }
+        if (s.r < floor_) {
+            // Smaller than the mesh resolves: no template, the mesh is rebuilt once the skin
+            // has passed the critical point (at t_off), with the new topology.
+            s.remesh_at_off = true;
+            return;
+        }
         remesh(std::string(s.dim == 1 ? "neck" : "tunnel") + " at z = (" + std::to_string(s.z.x) + ", " +
                std::to_string(s.z.y) + ", " + std::to_string(s.z.z) + "), r = " + std::to_string(s.r) +
                ": no template fits (" + last_template_failure_ + ")");
@@ -733,6 +739,10 @@ private:
 
     void surgery_switch(std::uint32_t id) {
         Surgery& s = surgeries_[id];
+        if (s.remesh_at_off) {
+            (s.dim == 1 ? c().necks : c().tunnels) += 1;
+            return;
+        }
         if (s.cancelled || !s.active) {
             if (!s.cancelled) remesh("the skin reached a critical point without surgery");
             s.cancelled = true;
@@ -750,6 +760,23 @@ private:
 
     void surgery_off(std::uint32_t id) {
         Surgery& s = surgeries_[id];
+        if (s.remesh_at_off && !s.cancelled) {
+            // Right after the critical point the static mesher may still see the pinch: then
+            // it tries again when the skin is twice as far past it.
+            std::string failure;
+            if (rebuild(std::string(s.dim == 1 ? "neck" : "tunnel") + " smaller than the floor (r = " +
+                            std::to_string(s.r) + "), after it",
+                        t_, failure)) {
+                s.remesh_at_off = false;
+                return;
+            }
+            const double next = t_ + std::max(t_ - s.W, 1e-9 * (1 + std::abs(t_)));
+            if (next > report_.t_end || ++s.remesh_attempts > 40)
+                throw InternalError("grow_skin: remeshing after the critical point at t = " + std::to_string(s.W) +
+                                    " failed: " + failure);
+            push(next, Kind::SurgeryOff, id);
+            return;
+        }
         if (s.cancelled || !s.active) return;
         std::vector<Vertex> region;
         for (Vertex v : mesh_.vertices())
@@ -817,30 +844,32 @@ private:
 
     /// The fallback of §3.3: the whole mesh rebuilt by the static mesher at the current time.
     void remesh(const std::string& why) {
+        // Next to a critical point the static mesher may not resolve the pinch: mesh a little
+        // earlier instead, and let the vertices flow to now.
+        const double h = 1e-3 * (report_.t_end - report_.t_start);
+        std::string failure;
+        for (int attempt = 0; attempt < 5; ++attempt)
+            if (rebuild(why, attempt == 0 ? t_ : t_ - h * double(1 << (attempt - 1)), failure)) return;
+        throw InternalError("grow_skin: remeshing at t = " + std::to_string(t_) + " (" + why + ") failed: " + failure);
+    }
+
+    /// The whole mesh replaced by the static mesh at time `at` (≤ now), its vertices flowing to
+    /// now; false (mesh unchanged, `failure` set) when the static mesher fails there.
+    bool rebuild(const std::string& why, double at, std::string& failure) {
+        SkinMeshOptions mo;
+        mo.time = at;
+        mo.quality = q_;
+        mo.rho_floor_factor = o_.rho_floor_factor;
+        SkinMeshResult r;
+        try {
+            r = mesh_skin(phi_, mo);
+        } catch (const Error& e) {
+            failure = e.what();
+            return false;
+        }
         ++c().fallbacks;
         if (report_.fallback_reasons.size() < 10)
             report_.fallback_reasons.push_back("t = " + std::to_string(t_) + ": " + why);
-        SkinMeshOptions mo;
-        mo.time = t_;
-        mo.quality = q_;
-        mo.rho_floor_factor = o_.rho_floor_factor;
-        // Next to a critical point the static mesher may not resolve the pinch: mesh a little
-        // earlier instead, and let the vertices flow to now.
-        SkinMeshResult r;
-        double at = t_;
-        const double h = 1e-3 * (report_.t_end - report_.t_start);
-        for (int attempt = 0;; ++attempt) {
-            try {
-                mo.time = at;
-                r = mesh_skin(phi_, mo);
-                break;
-            } catch (const Error& e) {
-                if (attempt == 4)
-                    throw InternalError("grow_skin: remeshing at t = " + std::to_string(t_) + " (" + why +
-                                        ") failed: " + e.what());
-                at = t_ - h * double(1 << attempt);
-            }
-        }
         mesh_ = std::move(r.mesh);
         vt_.assign(mesh_.vertices_size(), at);
         vtag_.assign(mesh_.vertices_size(), -1);
@@ -865,6 +894,7 @@ private:
         for (Edge e : mesh_.edges()) pending_.push_back({false, e.idx(), "remesh"});
         for (Face f : mesh_.faces()) pending_.push_back({true, f.idx(), "remesh"});
         ensure_step();
+        return true;
     }
 
     // ---- every-step scheduling ---------------------------------------------------------------

@@ -280,10 +280,19 @@ private:
         c->info().ready = true;
     }
 
-    /// The crossings of the facet's dual Voronoi edge with the skin.
+    /// Of the two cells on a facet, the one the facet is looked at from: the finite one, or
+    /// the one whose vertex opposite the facet is lexicographically smaller. Not the handles'
+    /// addresses: the mesh must not depend on where the allocator put the cells.
+    bool looked_from(Cell c, int i) const {
+        const Cell n = c->neighbor(i);
+        if (dt_.is_infinite(c) != dt_.is_infinite(n)) return !dt_.is_infinite(c);
+        return c->vertex(i)->point() < n->vertex(n->index(c))->point();
+    }
+
+    /// The crossings of the facet's dual Voronoi edge with the skin (the same from both sides).
     Crossing dual_crossing(Cell c, int i) {
         Cell n = c->neighbor(i);
-        if (dt_.is_infinite(c)) {
+        if (!looked_from(c, i)) {
             std::swap(c, n);
             i = c->index(n);
         }
@@ -391,7 +400,7 @@ private:
             for (Cell s : star) {
                 for (int k = 0; k < 4; ++k) {
                     const Cell n = s->neighbor(k);
-                    if (n->has_vertex(v) && n < s) continue;  // shared facet, tested once
+                    if (n->has_vertex(v) && !looked_from(s, k)) continue;  // shared facet, tested once
                     test_facet(s, k);
                 }
             }
@@ -405,28 +414,37 @@ private:
     SkinMeshResult extract() {
         TriangleSoup soup;
         SkinMeshResult result;
+        // The facets are visited in an order that depends on where the cells lie in memory:
+        // the vertices are numbered in the triangulation's own (allocation) order and the
+        // triangles sorted, so that the mesh is the same in every run.
         for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) v->info().mesh_index = ~0u;
-        const auto index_of = [&](Vertex v) {
-            if (v->info().mesh_index == ~0u) {
-                std::size_t hint = v->info().hint;
-                v->info().mesh_index = std::uint32_t(soup.points.size());
-                soup.points.push_back(project_to_skin(phi_, to_p(v->point()), t_, hint));
-                result.rho.push_back(v->info().rho);
-            }
-            return v->info().mesh_index;
-        };
+        std::vector<std::array<Vertex, 3>> restricted;
         for (auto f = dt_.finite_facets_begin(); f != dt_.finite_facets_end(); ++f) {
             const Cell c = f->first;
             const int i = f->second;
             const Crossing x = dual_crossing(c, i);
             if (x.hits == 0) continue;
-            Vertex v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+            std::array<Vertex, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
             const Point3 p0 = to_p(v[0]->point()), p1 = to_p(v[1]->point()), p2 = to_p(v[2]->point());
             std::size_t hint = v[0]->info().hint;
             const Vec3 g = phi_.evaluate(x.p, hint).gradient;
             if (dot(cross(p1 - p0, p2 - p0), g) < 0) std::swap(v[1], v[2]);
-            soup.triangles.push_back({index_of(v[0]), index_of(v[1]), index_of(v[2])});
+            for (Vertex w : v) w->info().mesh_index = 0;  // used
+            restricted.push_back(v);
         }
+        for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) {
+            if (v->info().mesh_index == ~0u) continue;
+            std::size_t hint = v->info().hint;
+            v->info().mesh_index = std::uint32_t(soup.points.size());
+            soup.points.push_back(project_to_skin(phi_, to_p(v->point()), t_, hint));
+            result.rho.push_back(v->info().rho);
+        }
+        for (const auto& v : restricted) {
+            std::array<std::uint32_t, 3> t{v[0]->info().mesh_index, v[1]->info().mesh_index, v[2]->info().mesh_index};
+            std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // orientation kept
+            soup.triangles.push_back(t);
+        }
+        std::sort(soup.triangles.begin(), soup.triangles.end());
         result.mesh = SurfaceMesh::from_soup(soup);
         return result;
     }
