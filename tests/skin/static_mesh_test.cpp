@@ -105,6 +105,32 @@ TEST(SkinStaticMesh, RingIsATorus) {
     EXPECT_EQ(check_mesh(m.mesh).euler, 0);
 }
 
+/// The mesh is a function of the input: the same in every call, wherever the allocator puts
+/// the triangulation (earlier results are kept alive so that each call's cells land elsewhere).
+TEST(SkinStaticMesh, SameMeshInEveryCall) {
+    const auto B = ring(8, 3.0, 2.2, 0.3);
+    const SkinFunction phi(B, 0.5);
+    std::vector<SkinMeshResult> kept;
+    for (int call = 0; call < 4; ++call) {
+        kept.push_back(mesh_skin(phi));
+        std::vector<std::vector<char>> ballast(64 * (call + 1), std::vector<char>(4096 + 64 * call));
+        if (call == 0) continue;
+        const SurfaceMesh& a = kept.front().mesh;
+        const SurfaceMesh& b = kept.back().mesh;
+        ASSERT_EQ(a.n_vertices(), b.n_vertices()) << "call " << call;
+        ASSERT_EQ(a.n_faces(), b.n_faces()) << "call " << call;
+        for (Vertex v : a.vertices()) {
+            ASSERT_EQ(a.position(v).x, b.position(v).x) << "call " << call << ", vertex " << v.idx();
+            ASSERT_EQ(a.position(v).y, b.position(v).y) << "call " << call << ", vertex " << v.idx();
+            ASSERT_EQ(a.position(v).z, b.position(v).z) << "call " << call << ", vertex " << v.idx();
+        }
+        for (Face f : a.faces()) {
+            const auto fa = a.face_vertices(f), fb = b.face_vertices(f);
+            for (int i = 0; i < 3; ++i) ASSERT_EQ(fa[i].idx(), fb[i].idx()) << "call " << call << ", face " << f.idx();
+        }
+    }
+}
+
 TEST(SkinStaticMesh, EmptySkinIsRefused) {
     const SkinFunction phi({{{0, 0, 0}, 1.0}}, 0.5);
     SkinMeshOptions o;
