@@ -63,7 +63,11 @@ struct Crossing {
 struct BadFacet {
     double priority = 0;
     Vertex a, b, c;
-    bool operator<(const BadFacet& o) const { return priority < o.priority; }
+    /// The facet's corners in lexicographic order: ties in priority (symmetric inputs) are
+    /// broken by where the facet is, not by the order in which facets were queued (which
+    /// follows the cells' addresses).
+    std::array<std::array<double, 3>, 3> key{};
+    bool operator<(const BadFacet& o) const { return priority != o.priority ? priority < o.priority : key < o.key; }
 };
 
 class Mesher {
@@ -371,7 +375,13 @@ private:
         Crossing x;
         double priority = 0;
         if (judge(c, i, x, priority) == Defect::None) return;
-        queue_.push({priority, c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)});
+        BadFacet bad{priority, c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3), {}};
+        for (int k = 0; k < 3; ++k) {
+            const K::Point_3& p = c->vertex((i + 1 + k) & 3)->point();
+            bad.key[k] = {p.x(), p.y(), p.z()};
+        }
+        std::sort(bad.key.begin(), bad.key.end());
+        queue_.push(bad);
     }
 
     void refine() {
