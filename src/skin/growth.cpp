@@ -703,6 +703,8 @@ private:
         ++c().deaths;
     }
 
+    static const char* event_name(const Surgery& s) { return s.dim == 1 ? "neck" : "tunnel"; }
+
     void surgery_on(std::uint32_t id) {
         Surgery& s = surgeries_[id];
         if (s.cancelled) return;
@@ -726,12 +728,13 @@ private:
             }
         }
         if (s.r < floor_) {
-            // Smaller than the mesh resolves: no template, the mesh is rebuilt once the skin
-            // has passed the critical point (at t_off), with the new topology.
+            // No template fits and the event is smaller than the mesh resolves: the mesh is
+            // rebuilt once the skin has passed the critical point (at t_off), with the new
+            // topology, rather than now, before it.
             s.remesh_at_off = true;
             return;
         }
-        remesh(std::string(s.dim == 1 ? "neck" : "tunnel") + " at z = (" + std::to_string(s.z.x) + ", " +
+        remesh(std::string(event_name(s)) + " at z = (" + std::to_string(s.z.x) + ", " +
                std::to_string(s.z.y) + ", " + std::to_string(s.z.z) + "), r = " + std::to_string(s.r) +
                ": no template fits (" + last_template_failure_ + ")");
         s.cancelled = true;
@@ -739,14 +742,11 @@ private:
 
     void surgery_switch(std::uint32_t id) {
         Surgery& s = surgeries_[id];
-        if (s.remesh_at_off) {
-            (s.dim == 1 ? c().necks : c().tunnels) += 1;
-            return;
-        }
+        (s.dim == 1 ? c().necks : c().tunnels) += 1;
+        if (s.remesh_at_off) return;  // rebuilt at t_off
         if (s.cancelled || !s.active) {
             if (!s.cancelled) remesh("the skin reached a critical point without surgery");
             s.cancelled = true;
-            (s.dim == 1 ? c().necks : c().tunnels) += 1;
             return;
         }
         std::vector<Face> cut = template_faces(id);
@@ -755,7 +755,6 @@ private:
             remesh("the template could not be swapped");
             s.cancelled = true;
         }
-        (s.dim == 1 ? c().necks : c().tunnels) += 1;
     }
 
     void surgery_off(std::uint32_t id) {
@@ -764,7 +763,7 @@ private:
             // Right after the critical point the static mesher may still see the pinch: then
             // it tries again when the skin is twice as far past it.
             std::string failure;
-            if (rebuild(std::string(s.dim == 1 ? "neck" : "tunnel") + " smaller than the floor (r = " +
+            if (rebuild(std::string(event_name(s)) + " smaller than the floor (r = " +
                             std::to_string(s.r) + "), after it",
                         t_, failure)) {
                 s.remesh_at_off = false;

@@ -27,7 +27,7 @@ struct Surgery {
     Vec3 e1{1, 0, 0}, e2{0, 1, 0};  ///< completing an orthonormal frame
     bool active = false;     ///< a template is in the mesh
     bool cancelled = false;  ///< replaced by a remesh
-    bool remesh_at_off = false;  ///< no template (smaller than the floor): remeshed at t_off
+    bool remesh_at_off = false;  ///< no template fitted (smaller than the floor): remeshed at t_off
     int remesh_attempts = 0;     ///< of that remesh (each one later)
 };
 
