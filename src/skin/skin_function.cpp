@@ -164,6 +164,26 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
             basis_[k][std::size_t(i)] = v / norm(v);
         }
     }
+    // The walk's table: each constraint of each mixed cell with the simplex it moves to (a face
+    // of a simplex and δ ∪ {j} for a link vertex j are simplices of the triangulation).
+    walk_begin_.assign(simplices_.size() + 1, 0);
+    for (std::size_t k = 0; k < simplices_.size(); ++k) {
+        const SkinSimplex& sx = simplices_[k];
+        walk_begin_[k] = walk_.size();
+        const auto to = [&](int drop, int add) {
+            const std::optional<std::size_t> target = neighbour(k, drop, add);
+            if (!target) throw InternalError("SkinFunction: a face or coface is missing from the triangulation");
+            return *target;
+        };
+        if (sx.dim > 0) {
+            for (int i = 0; i < sx.dim; ++i) walk_.push_back({to(sx.vertices[std::size_t(i + 1)], -1), -1, 0.0});
+            walk_.push_back({to(sx.vertices[0], -1), -1, 0.0});
+        }
+        const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
+        for (int j : sx.link)
+            walk_.push_back({to(-1, j), j, 2 * norm(balls_[std::size_t(j)].center - b0.center)});
+    }
+    walk_begin_[simplices_.size()] = walk_.size();
 }
 
 Vec3 SkinFunction::along_simplex(std::size_t k, const Vec3& u) const {
@@ -179,6 +199,7 @@ void SkinFunction::for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) 
     const Vec3 ud = along_simplex(k, u);
     const Vec3 un = u - ud;
     const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
+    const WalkStep* step = walk_.data() + walk_begin_[k];
     if (sx.dim > 0) {
         // p = z + u_δ/(1 − s) in δ: barycentric coordinates ≥ 0, scaled by the longest edge.
         const Vec3 p = sx.z + ud / (1 - s_) - b0.center;
@@ -186,32 +207,31 @@ void SkinFunction::for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) 
         for (int i = 0; i < sx.dim; ++i) {
             const double m = dot(dual_[k][std::size_t(i)], p);
             l0 -= m;
-            fn(-m * longest_edge_[k], sx.vertices[std::size_t(i + 1)], -1);
+            fn(-m * longest_edge_[k], step->target);
+            ++step;
         }
-        fn(-l0 * longest_edge_[k], sx.vertices[0], -1);
+        fn(-l0 * longest_edge_[k], step->target);
+        ++step;
     }
     // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex j
     // (signed distance to that plane).
     const Point3 q = sx.z + un / s_;
     const double p0 = power(b0, q);
-    for (int j : sx.link) {
-        const WeightedPoint& bj = balls_[std::size_t(j)];
-        fn((p0 - power(bj, q)) / (2 * norm(bj.center - b0.center)), -1, j);
-    }
+    for (const WalkStep* end = walk_.data() + walk_begin_[k + 1]; step != end; ++step)
+        fn((p0 - power(balls_[std::size_t(step->ball)], q)) / step->span, step->target);
 }
 
 void SkinFunction::violated(std::size_t k, const Point3& x, std::vector<Move>& out) const {
     out.clear();
     const double tol = 1e-12 * scale_;
-    for_each_constraint(k, x, [&](double amount, int drop, int add) {
-        if (amount > tol) out.push_back({amount, drop, add});
+    for_each_constraint(k, x, [&](double amount, std::size_t target) {
+        if (amount > tol) out.push_back({amount, target});
     });
-    std::sort(out.begin(), out.end(), [](const Move& a, const Move& b) { return a.amount > b.amount; });
 }
 
 double SkinFunction::violation(std::size_t k, const Point3& x) const {
     double worst = -std::numeric_limits<double>::infinity();
-    for_each_constraint(k, x, [&](double amount, int, int) { worst = std::max(worst, amount); });
+    for_each_constraint(k, x, [&](double amount, std::size_t) { worst = std::max(worst, amount); });
     return worst;
 }
 
@@ -255,19 +275,31 @@ std::size_t SkinFunction::locate_by_scan(const Point3& x) const {
 std::size_t SkinFunction::locate(const Point3& x, std::size_t hint) const {
     DYNMESH_CHECK(is_finite(x), "SkinFunction::locate: the point is not finite");
     std::size_t k = hint < simplices_.size() ? hint : 0;
-    std::vector<Move> moves;
-    std::vector<std::size_t> visited;
+    thread_local std::vector<Move> moves;
+    thread_local std::vector<std::size_t> visited;
+    visited.clear();
+    const auto fresh = [&](std::size_t target) {
+        return std::find(visited.begin(), visited.end(), target) == visited.end();
+    };
     for (std::size_t step = 0; step < simplices_.size() + 8; ++step) {
         violated(k, x, moves);
         if (moves.empty()) return k;
         visited.push_back(k);
+        // The most violated constraint whose simplex the walk has not visited, ties in
+        // constraint order: the first maximum usually, else the moves sorted (stably).
+        std::size_t first = 0;
+        for (std::size_t m = 1; m < moves.size(); ++m)
+            if (moves[m].amount > moves[first].amount) first = m;
         std::optional<std::size_t> next;
-        for (const Move& m : moves) {
-            const std::optional<std::size_t> target = neighbour(k, m.drop, m.add);
-            if (target && std::find(visited.begin(), visited.end(), *target) == visited.end()) {
-                next = target;
-                break;
-            }
+        if (fresh(moves[first].target)) {
+            next = moves[first].target;
+        } else {
+            std::stable_sort(moves.begin(), moves.end(), [](const Move& a, const Move& b) { return a.amount > b.amount; });
+            for (const Move& m : moves)
+                if (fresh(m.target)) {
+                    next = m.target;
+                    break;
+                }
         }
         if (!next) break;
         k = *next;

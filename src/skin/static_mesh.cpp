@@ -41,6 +41,7 @@ struct CellInfo {
     double f = 0;      ///< Φ(cc) − t
     double clear = 0;  ///< a radius around cc free of the skin (Sample::clear)
     bool ready = false;
+    std::uint64_t id = 0;  ///< a number no other cell of this run has (0 until first asked)
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
 using Cb = CGAL::Triangulation_cell_base_with_info_3<CellInfo, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
@@ -58,6 +59,7 @@ enum class Defect : std::uint8_t { None, Size, Shape, Topology };
 struct Crossing {
     int hits = 0;    ///< sign changes of Φ − t seen along the dual edge
     Point3 p{};      ///< the first crossing from the finite end: the surface Delaunay ball's centre
+    std::uint64_t from = 0, to = 0;  ///< the ids of the cells the dual edge joins (looked from `from`)
 };
 
 struct BadFacet {
@@ -67,6 +69,9 @@ struct BadFacet {
     /// broken by where the facet is, not by the order in which facets were queued (which
     /// follows the cells' addresses).
     std::array<std::array<double, 3>, 3> key{};
+    /// The judgement when queued: still valid at the pop when the facet joins the same cells.
+    Crossing x;
+    Defect defect = Defect::None;
     bool operator<(const BadFacet& o) const { return priority != o.priority ? priority < o.priority : key < o.key; }
 };
 
@@ -293,13 +298,23 @@ private:
         return c->vertex(i)->point() < n->vertex(n->index(c))->point();
     }
 
+    std::uint64_t id_of(Cell c) {
+        if (c->info().id == 0) c->info().id = ++cells_seen_;
+        return c->info().id;
+    }
+
+    /// The facet (c, i) as seen from the cell it is looked at from.
+    void canonical(Cell& c, int& i) const {
+        if (looked_from(c, i)) return;
+        const Cell n = c->neighbor(i);
+        i = n->index(c);
+        c = n;
+    }
+
     /// The crossings of the facet's dual Voronoi edge with the skin (the same from both sides).
     Crossing dual_crossing(Cell c, int i) {
-        Cell n = c->neighbor(i);
-        if (!looked_from(c, i)) {
-            std::swap(c, n);
-            i = c->index(n);
-        }
+        canonical(c, i);
+        const Cell n = c->neighbor(i);
         prepare(c);
         const Point3 a = c->info().cc;
         const Sample sa{c->info().f, c->info().clear};
@@ -326,6 +341,8 @@ private:
         // covered by the skin-free balls of its ends (none); a piece still undecided after 8
         // halvings only grazes the skin and counts as no crossing.
         Crossing out;
+        out.from = id_of(c);
+        out.to = id_of(n);
         struct Piece {
             Point3 a, b;
             Sample sa, sb;
@@ -354,6 +371,7 @@ private:
 
     /// Why the facet (c, i) must be refined (None when it is not restricted, or good).
     Defect judge(Cell c, int i, Crossing& x, double& priority) {
+        canonical(c, i);
         x = dual_crossing(c, i);
         if (x.hits == 0) return Defect::None;
         const Vertex v0 = c->vertex((i + 1) & 3), v1 = c->vertex((i + 2) & 3), v2 = c->vertex((i + 3) & 3);
@@ -374,8 +392,9 @@ private:
             return;
         Crossing x;
         double priority = 0;
-        if (judge(c, i, x, priority) == Defect::None) return;
-        BadFacet bad{priority, c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3), {}};
+        const Defect defect = judge(c, i, x, priority);
+        if (defect == Defect::None) return;
+        BadFacet bad{priority, c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3), {}, x, defect};
         for (int k = 0; k < 3; ++k) {
             const K::Point_3& p = c->vertex((i + 1 + k) & 3)->point();
             bad.key[k] = {p.x(), p.y(), p.z()};
@@ -394,9 +413,17 @@ private:
             int i0 = 0, i1 = 0, i2 = 0;
             if (!dt_.is_facet(bad.a, bad.b, bad.c, c, i0, i1, i2)) continue;
             const int i = 6 - i0 - i1 - i2;
-            Crossing x;
-            double priority = 0;
-            const Defect defect = judge(c, i, x, priority);
+            // The judgement made when the facet was queued holds while it joins the same two
+            // cells (the same dual edge); otherwise it is judged again.
+            Cell from = c;
+            int j = i;
+            canonical(from, j);
+            Crossing x = bad.x;
+            Defect defect = bad.defect;
+            if (id_of(from) != x.from || id_of(from->neighbor(j)) != x.to) {
+                double priority = 0;
+                defect = judge(c, i, x, priority);
+            }
             if (defect == Defect::None) continue;
             DYNMESH_CHECK(dt_.number_of_vertices() < opt_.max_vertices,
                           "mesh_skin: more than max_vertices = " + std::to_string(opt_.max_vertices) +
@@ -467,6 +494,7 @@ private:
     double scale2_ = 1;
     DT dt_;
     std::priority_queue<BadFacet> queue_;
+    std::uint64_t cells_seen_ = 0;
     SkinMeshReport report_;
 };
 

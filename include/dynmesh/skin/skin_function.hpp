@@ -85,20 +85,31 @@ public:
 private:
     /// The violation of x's membership in μ_k (≤ 0 inside), relative to the simplex's scale.
     [[nodiscard]] double violation(std::size_t k, const Point3& x) const;
-    /// Calls fn(amount, drop, add) for each constraint of μ_k at x: the barycentric coordinate
-    /// of ball `drop` in δ (add = −1), or the power bisector with link ball `add` (drop = −1);
-    /// amount > 0 is a violation, relative to the simplex's scale.
+    /// Calls fn(amount, target) for each constraint of μ_k at x, in the order of walk_: the
+    /// barycentric coordinate of each ball of δ (target δ without it), then the power bisector
+    /// with each link ball j (target δ ∪ {j}); amount > 0 is a violation, relative to the
+    /// simplex's scale.
     template <class Fn>
     void for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) const;
-    /// A walk's move out of μ_k: to δ without ball `drop`, or with ball `add`.
+    /// A walk's move out of μ_k, to the simplex `target`.
     struct Move {
         double amount = 0;
-        int drop = -1, add = -1;
+        std::size_t target = 0;
     };
-    /// Every constraint of μ_k that x violates by more than the tolerance, most violated first.
+    /// Every constraint of μ_k that x violates by more than the tolerance, in constraint order.
     void violated(std::size_t k, const Point3& x, std::vector<Move>& out) const;
     /// The simplex δ of simplex k without (drop ≥ 0) or with (add ≥ 0) one ball.
     [[nodiscard]] std::optional<std::size_t> neighbour(std::size_t k, int drop, int add) const;
+
+    /// One constraint of a mixed cell, precomputed for the walk: the simplex a violation moves
+    /// to and, for a link ball, that ball and twice its distance to ball 0 of δ.
+    struct WalkStep {
+        std::size_t target = 0;
+        int ball = -1;       ///< the link ball (−1 for a barycentric coordinate)
+        double span = 0;     ///< 2‖z_ball − z_0‖
+    };
+    std::vector<WalkStep> walk_;           ///< per simplex, its constraints in order
+    std::vector<std::size_t> walk_begin_;  ///< simplex k's: [walk_begin_[k], walk_begin_[k + 1])
 
     std::vector<std::pair<std::array<int, 4>, std::size_t>> index_;  ///< sorted ball-index keys
     mutable std::size_t fallbacks_ = 0;
