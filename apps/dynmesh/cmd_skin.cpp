@@ -37,6 +37,7 @@ struct SkinArgs {
     bool grow = false;
     std::size_t steps = 10;
     std::string schedule = "relaxed";
+    double step = 0;
     std::string out, png;
     bool audit = false;
     CommonOptions common;
@@ -109,6 +110,7 @@ SkinOutcome grown_mesh(const SkinArgs& a, const SkinFunction& phi, const fs::pat
     go.schedule = a.schedule == "every-step" ? SkinSchedule::EveryStep : SkinSchedule::Relaxed;
     go.snapshots = a.steps;
     go.audit = a.audit;
+    go.fixed_step = a.step;
     const double t0 = skin_growth_start(phi, go);
     go.progress = [&](double t) { progress.detail("t = " + format_number(t) + " of [" + format_number(t0) + ", 0]"); };
     std::vector<std::pair<double, std::string>> series;
@@ -158,9 +160,11 @@ SkinOutcome grown_mesh(const SkinArgs& a, const SkinFunction& phi, const fs::pat
                              {"checks_edge", k.checks_edge},
                              {"checks_triangle", k.checks_triangle},
                              {"steps", k.steps},
+                             {"fixed_step", a.step},
                              {"refused_contractions", k.refused_contractions},
                              {"refused_insertions", k.refused_insertions},
                              {"deferred", k.deferred},
+                             {"still_bad", k.still_bad},
                              {"fallbacks", k.fallbacks},
                              {"flow_fallbacks", k.flow_fallbacks},
                              {"evaluations", k.evaluations},
@@ -191,6 +195,9 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
     if (a.model < 1) throw UsageError("--model must be at least 1");
     if (a.schedule != "relaxed" && a.schedule != "every-step")
         throw UsageError("--schedule must be relaxed or every-step, got '" + a.schedule + "'");
+    if (!(std::isfinite(a.step) && a.step >= 0)) throw UsageError("--step must be a time step > 0");
+    if (a.step > 0 && (!a.grow || a.schedule != "every-step"))
+        throw UsageError("--step needs --grow --schedule every-step");
     if (!a.grow && (!a.out.empty() || a.audit))
         throw UsageError(std::string(a.audit ? "--audit" : "--out") + " needs --grow");
     if (a.grow && a.shrink != 0.5) throw UsageError("--grow needs --shrink 0.5 (the growth model is for s = 1/2)");
@@ -330,6 +337,9 @@ void register_skin(CLI::App& root, int& result) {
     sub->add_option("--schedule", args->schedule,
                     "With --grow: relaxed (each edge and triangle checked when its safe duration runs out) or "
                     "every-step (every element checked at every global step; the baseline)");
+    sub->add_option("--step", args->step,
+                    "With --schedule every-step: a fixed global time step instead of the smallest safe duration "
+                    "in the mesh (misses it lets through are counted as violations)");
     sub->add_option("--out", args->out,
                     "With --grow: a directory for the ParaView series skin.pvd + skin_NNNNN.vtp (vertex field rho, "
                     "face fields min_angle_deg and exempt)");

@@ -54,6 +54,7 @@ struct ElementState {
     Signature sig{kNone, kNone, kNone};
     double checked_at = 0;
     bool checked = false;
+    bool beyond = false;  ///< its last check found it beyond the Q1 threshold
 };
 
 class Grower {
@@ -63,6 +64,10 @@ public:
                                                std::to_string(phi.shrink()) + ")");
         const auto problems = feasibility_problems(q_);
         DYNMESH_CHECK(problems.empty(), "grow_skin: " + (problems.empty() ? std::string() : problems.front()));
+        DYNMESH_CHECK(std::isfinite(o.fixed_step) && o.fixed_step >= 0,
+                      "grow_skin: the fixed step must be finite and not negative");
+        DYNMESH_CHECK(o.fixed_step == 0 || o.schedule == SkinSchedule::EveryStep,
+                      "grow_skin: a fixed step needs the every-step scheduler");
         double sum = 0;
         std::size_t n = 0;
         for (std::size_t i = 0; i < phi.input_balls(); ++i)
@@ -298,7 +303,7 @@ private:
         const bool persisted = st.checked && st.sig == sig;
         const double low = q_.C / q_.Q1;
         bool missed = false;
-        if (persisted && o_.audit)
+        if (persisted && !st.beyond && o_.audit)
             missed = audit(st.checked_at, [&](double t) {
                 const Point3 xa = peek(a, t), xb = peek(b, t);
                 std::size_t ca = vcell_[a.idx()], cb = vcell_[b.idx()];
@@ -307,11 +312,10 @@ private:
                 const Measure mm = edge_measure(xa, xb, rho_at(xa, ca), rho_at(xb, cb));
                 return !mm.floored && mm.ratio <= low;
             });
-        if (!m.floored && m.ratio <= low) {
-            if (persisted) missed = true;
-            else ++c().born_bad[cause];
-        }
+        const bool beyond = !m.floored && m.ratio <= low;
+        if (beyond) count_beyond(persisted, st.beyond, cause, missed);
         if (missed) note_violation("edge", st.checked_at, m.ratio, pa);
+        st.beyond = beyond;
         st.sig = sig;
         st.checked = true;
         st.checked_at = t_;
@@ -353,7 +357,7 @@ private:
         const bool persisted = st.checked && st.sig == sig;
         const double high = q_.C * q_.Q1;
         bool missed = false;
-        if (persisted && o_.audit)
+        if (persisted && !st.beyond && o_.audit)
             missed = audit(st.checked_at, [&](double t) {
                 std::array<Point3, 3> x;
                 std::array<double, 3> rr{};
@@ -364,11 +368,10 @@ private:
                 const Measure mm = face_measure(x[0], x[1], x[2], rr[0], rr[1], rr[2]);
                 return !mm.floored && mm.ratio >= high;
             });
-        if (!m.floored && m.ratio >= high) {
-            if (persisted) missed = true;
-            else ++c().born_bad[cause];
-        }
+        const bool beyond = !m.floored && m.ratio >= high;
+        if (beyond) count_beyond(persisted, st.beyond, cause, missed);
         if (missed) note_violation("triangle", st.checked_at, m.ratio, p[0]);
+        st.beyond = beyond;
         st.sig = sig;
         st.checked = true;
         st.checked_at = t_;
@@ -388,6 +391,17 @@ private:
             return;
         }
         schedule(f, t_ + triangle_safe_duration(gamma, m.rho0, q_));
+    }
+
+    /// An element found beyond the Q1 threshold (§8 correction 2): a miss when its previous
+    /// check found it in range; born bad when it is new; still bad when its previous check
+    /// found it beyond already (the repair then was refused or undone).
+    void count_beyond(bool persisted, bool was_beyond, const char* cause, bool& missed) {
+        switch (classify_beyond(persisted, was_beyond)) {
+            case BeyondCount::BornBad: ++c().born_bad[cause]; break;
+            case BeyondCount::StillBad: ++c().still_bad; break;
+            case BeyondCount::Miss: missed = true; break;
+        }
     }
 
     void note_violation(const char* what, double since, double ratio, const Point3& where) {
@@ -911,7 +925,13 @@ private:
         drain();
         for (Face f : mesh_.faces()) pending_.push_back({true, f.idx(), "flip"});
         drain();
-        if (mesh_.n_faces() == 0 || !std::isfinite(step_min_)) return;
+        if (mesh_.n_faces() == 0) return;
+        if (o_.fixed_step > 0) {
+            step_pending_ = true;
+            push(t_ + o_.fixed_step, Kind::Step, 0);
+            return;
+        }
+        if (!std::isfinite(step_min_)) return;
         step_pending_ = true;
         push(t_ + std::max(step_min_, 1e-15 * (1 + std::abs(t_))), Kind::Step, 0);
     }

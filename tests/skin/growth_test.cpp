@@ -115,6 +115,29 @@ TEST(SkinGrowth, EveryStepChecksMoreForTheSameMesh) {
     EXPECT_GT(every.counters.steps, 1u);
 }
 
+/// §4.6: a fixed global step instead of the adaptive one is checked at that pace, and a coarse
+/// one lets misses through that the auditor sees (the adaptive step and relaxed scheduling have
+/// none on the same growth, above).
+TEST(SkinGrowth, FixedStepIsTakenAndItsMissesCounted) {
+    const SkinFunction phi({{{0, 0, 0}, 2.0}, {{2.2, 0.1, 0}, 1.8}}, 0.5);
+    SkinGrowthOptions o;
+    o.schedule = SkinSchedule::EveryStep;
+    o.audit = true;
+    const double start = skin_growth_start(phi, o);
+    const double h = -start / 6;
+    o.fixed_step = h;
+    const SkinGrowthResult r = grow_skin(phi, o);
+    // One step at the first birth, then one every h until t = 0 (the last may fall after it).
+    EXPECT_GE(double(r.report.counters.steps), -start / h);
+    EXPECT_LE(double(r.report.counters.steps), -start / h + 2);
+    EXPECT_GT(r.report.counters.violations, 0u);
+    SkinGrowthOptions relaxed;
+    relaxed.fixed_step = h;
+    EXPECT_THROW((void)grow_skin(phi, relaxed), InvalidInput);
+    o.fixed_step = -1;
+    EXPECT_THROW((void)grow_skin(phi, o), InvalidInput);
+}
+
 TEST(SkinGrowth, RejectsOtherShrinkFactors) {
     const SkinFunction phi({{{0, 0, 0}, 2.0}}, 0.3);
     EXPECT_THROW((void)grow_skin(phi), InvalidInput);

@@ -55,6 +55,14 @@ TEST(SafeDuration, TravelDurationIsTheVoidSpheresTime) {
         }
 }
 
+/// §8 correction 2: only an element that was in range at its previous check is a miss.
+TEST(SafeDuration, BeyondTheThresholdIsAMissOnlyAfterAnInRangeCheck) {
+    EXPECT_EQ(classify_beyond(false, false), BeyondCount::BornBad);
+    EXPECT_EQ(classify_beyond(false, true), BeyondCount::BornBad);  // a stale state of another element
+    EXPECT_EQ(classify_beyond(true, true), BeyondCount::StillBad);
+    EXPECT_EQ(classify_beyond(true, false), BeyondCount::Miss);
+}
+
 TEST(SafeDuration, MinimumAngleFloorAndFeasibility) {
     EXPECT_NEAR(min_angle_floor_deg(2.25), 11.39, 0.005);
     EXPECT_NEAR(min_angle_floor_deg(1.75), 19.0, 0.1);  // "about 11.4° and 19°" (§5)

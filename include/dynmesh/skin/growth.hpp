@@ -59,6 +59,10 @@ struct SkinSnapshot {
 struct SkinGrowthOptions {
     SkinQuality quality{};
     SkinSchedule schedule = SkinSchedule::Relaxed;
+    /// Every-step scheduler only: a fixed global step h instead of the adaptive one (the
+    /// smallest safe duration in the mesh). A fixed h can let misses through (§4.6: "report a
+    /// fixed user h and the violations it lets through"); 0 is the adaptive step.
+    double fixed_step = 0;
     double t_end = 0;          ///< the growth stops here (0: the input radii)
     /// Snapshots at t_start + i·(t_end − t_start)/snapshots, i = 1 … snapshots (the last at
     /// t_end); 0 gives none but the final mesh.
@@ -90,6 +94,9 @@ struct SkinGrowthCounters {
     std::size_t deferred = 0;
     std::size_t violations = 0;                   ///< misses (§8 correction 2); must be 0
     std::map<std::string, std::size_t> born_bad;  ///< by cause: flip, contraction, insertion, dissolution, remesh
+    /// Checks that found an element beyond the Q1 threshold whose previous check had found it
+    /// beyond already (its repair was refused or undone by a neighbouring operation); not misses.
+    std::size_t still_bad = 0;
     /// Surgery that could not use its template (no two loops in the ball): the whole mesh was
     /// remeshed at that time by mesh_skin.
     std::size_t fallbacks = 0;

@@ -41,6 +41,15 @@ struct SkinQuality {
 /// γ ≥ Q1/Q0.
 [[nodiscard]] double triangle_safe_duration(double gamma, double rho0, const SkinQuality& q = {});
 
+/// What a check that finds an element beyond the Q1 threshold counts (§8 correction 2).
+enum class BeyondCount {
+    BornBad,   ///< the element is new (created, changed, or its exemption cleared) since its last check
+    StillBad,  ///< its previous check found it beyond already: a repair was refused or undone
+    Miss       ///< its previous check found it in range: the schedule let it cross (must never happen)
+};
+/// `persisted`: the same element was checked before; `was_beyond`: that check found it beyond.
+[[nodiscard]] BeyondCount classify_beyond(bool persisted, bool was_beyond);
+
 /// The minimum angle every triangle meeting [L] and [U] at Q has: asin(1/Q²), in degrees
 /// (11.39° at Q1 = 2.25).
 [[nodiscard]] double min_angle_floor_deg(double Q);
