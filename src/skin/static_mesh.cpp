@@ -311,6 +311,23 @@ private:
         c = n;
     }
 
+    /// Pieces of a dual edge are halved until each either changes sign (a crossing) or is
+    /// covered by the skin-free balls of its ends (none); a piece still undecided after 8
+    /// halvings only grazes the skin and counts as no crossing. The near half is searched first.
+    void search(const Point3& a, const Sample& sa, const Point3& b, const Sample& sb, int depth, Crossing& out,
+                std::size_t& hint) const {
+        if ((sa.f < 0) != (sb.f < 0)) {
+            if (out.hits == 0) out.p = root_between(a, sa.f, b, sb.f, hint);
+            ++out.hits;
+            return;
+        }
+        if (sa.clear + sb.clear >= norm(b - a) || depth >= 8) return;
+        const Point3 m = a + 0.5 * (b - a);
+        const Sample sm = sample_at(m, hint);
+        search(a, sa, m, sm, depth + 1, out, hint);
+        search(m, sm, b, sb, depth + 1, out, hint);
+    }
+
     /// The crossings of the facet's dual Voronoi edge with the skin (the same from both sides).
     Crossing dual_crossing(Cell c, int i) {
         canonical(c, i);
@@ -337,35 +354,10 @@ private:
             b = n->info().cc;
             sb = {n->info().f, n->info().clear};
         }
-        // Pieces of the edge are halved until each either changes sign (a crossing) or is
-        // covered by the skin-free balls of its ends (none); a piece still undecided after 8
-        // halvings only grazes the skin and counts as no crossing.
         Crossing out;
         out.from = id_of(c);
         out.to = id_of(n);
-        struct Piece {
-            Point3 a, b;
-            Sample sa, sb;
-            int depth;
-        };
-        Piece stack[32];
-        int top = 0;
-        stack[top++] = {a, b, sa, sb, 0};
-        while (top > 0) {
-            const Piece pc = stack[--top];
-            if ((pc.sa.f < 0) != (pc.sb.f < 0)) {
-                if (out.hits == 0) out.p = root_between(pc.a, pc.sa.f, pc.b, pc.sb.f, hint);
-                ++out.hits;
-                continue;
-            }
-            const double len = norm(pc.b - pc.a);
-            if (pc.sa.clear + pc.sb.clear >= len || pc.depth >= 8 || top + 2 > 32) continue;
-            const Point3 m = pc.a + 0.5 * (pc.b - pc.a);
-            const Sample sm = sample_at(m, hint);
-            // Far half first on the stack, so the near half is searched first.
-            stack[top++] = {m, pc.b, sm, pc.sb, pc.depth + 1};
-            stack[top++] = {pc.a, m, pc.sa, sm, pc.depth + 1};
-        }
+        search(a, sa, b, sb, 0, out, hint);
         return out;
     }
 
