@@ -112,6 +112,10 @@ SkinOutcome grown_mesh(const SkinArgs& a, const SkinFunction& phi, const fs::pat
     go.audit = a.audit;
     go.fixed_step = a.step;
     const double t0 = skin_growth_start(phi, go);
+    if (a.step > 0 && a.step < SkinGrowthOptions::kMinFixedStep * (go.t_end - t0))
+        throw UsageError("--step " + format_number(a.step) + " is under " +
+                         format_number(SkinGrowthOptions::kMinFixedStep) + " of the growth's time span (" +
+                         format_number(go.t_end - t0) + ")");
     go.progress = [&](double t) { progress.detail("t = " + format_number(t) + " of [" + format_number(t0) + ", 0]"); };
     std::vector<std::pair<double, std::string>> series;
     std::vector<std::string> problems;
@@ -195,7 +199,8 @@ void run_skin(const SkinArgs& a, RunContext& ctx) {
     if (a.model < 1) throw UsageError("--model must be at least 1");
     if (a.schedule != "relaxed" && a.schedule != "every-step")
         throw UsageError("--schedule must be relaxed or every-step, got '" + a.schedule + "'");
-    if (!(std::isfinite(a.step) && a.step >= 0)) throw UsageError("--step must be a time step > 0");
+    if (!(std::isfinite(a.step) && a.step >= 0))
+        throw UsageError("--step must be a positive time step (or 0: the adaptive step)");
     if (a.step > 0 && (!a.grow || a.schedule != "every-step"))
         throw UsageError("--step needs --grow --schedule every-step");
     if (!a.grow && (!a.out.empty() || a.audit))

@@ -80,6 +80,9 @@ public:
         report_.t_start = skin_growth_start(phi, o);
         report_.t_end = o.t_end;
         DYNMESH_CHECK(o.t_end > report_.t_start, "grow_skin: t_end is before the first birth");
+        DYNMESH_CHECK(o.fixed_step == 0 || o.fixed_step >= SkinGrowthOptions::kMinFixedStep * (o.t_end - report_.t_start),
+                      "grow_skin: the fixed step is under " + std::to_string(SkinGrowthOptions::kMinFixedStep) +
+                          " of the growth's time span");
         report_.rho_floor = floor_;
     }
 

@@ -511,6 +511,9 @@ skin_grow_bad)
     run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --step 0.01 -o x.ply
     grep -q "every-step" err.txt || fail "--step with the relaxed scheduler: $(cat err.txt)"
     run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --schedule every-step --step -1 -o x.ply
+    grep -q "positive time step" err.txt || fail "--step -1: $(cat err.txt)"
+    run 2 "$bin" skin "$data/molecules/small02.pdb" --grow --schedule every-step --step 1e-17 -o x.ply
+    grep -q "time span" err.txt || fail "--step 1e-17: $(cat err.txt)"
     run 2 "$bin" skin "$data/molecules/small02.pdb" --png x.jpg -o x.ply
     [ ! -e x.ply ] || fail "an output was written by a refused run"
     true

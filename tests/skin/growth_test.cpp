@@ -127,14 +127,16 @@ TEST(SkinGrowth, FixedStepIsTakenAndItsMissesCounted) {
     const double h = -start / 6;
     o.fixed_step = h;
     const SkinGrowthResult r = grow_skin(phi, o);
-    // One step at the first birth, then one every h until t = 0 (the last may fall after it).
+    // One step at the first birth, then one every h up to t = 0.
     EXPECT_GE(double(r.report.counters.steps), -start / h);
-    EXPECT_LE(double(r.report.counters.steps), -start / h + 2);
+    EXPECT_LE(double(r.report.counters.steps), -start / h + 1);
     EXPECT_GT(r.report.counters.violations, 0u);
     SkinGrowthOptions relaxed;
     relaxed.fixed_step = h;
     EXPECT_THROW((void)grow_skin(phi, relaxed), InvalidInput);
     o.fixed_step = -1;
+    EXPECT_THROW((void)grow_skin(phi, o), InvalidInput);
+    o.fixed_step = 1e-12 * -start;  // would stop the clock
     EXPECT_THROW((void)grow_skin(phi, o), InvalidInput);
 }
 

@@ -63,6 +63,8 @@ struct SkinGrowthOptions {
     /// smallest safe duration in the mesh). A fixed h can let misses through (§4.6: "report a
     /// fixed user h and the violations it lets through"); 0 is the adaptive step.
     double fixed_step = 0;
+    /// The smallest fixed step accepted, as a fraction of the growth's time span.
+    static constexpr double kMinFixedStep = 1e-9;
     double t_end = 0;          ///< the growth stops here (0: the input radii)
     /// Snapshots at t_start + i·(t_end − t_start)/snapshots, i = 1 … snapshots (the last at
     /// t_end); 0 gives none but the final mesh.
