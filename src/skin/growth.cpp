@@ -315,13 +315,7 @@ private:
                 const Measure mm = edge_measure(xa, xb, rho_at(xa, ca), rho_at(xb, cb));
                 return !mm.floored && mm.ratio <= low;
             });
-        const bool beyond = !m.floored && m.ratio <= low;
-        if (beyond) count_beyond(persisted, st.beyond, cause, missed);
-        if (missed) note_violation("edge", st.checked_at, m.ratio, pa);
-        st.beyond = beyond;
-        st.sig = sig;
-        st.checked = true;
-        st.checked_at = t_;
+        record_check(st, sig, persisted, !m.floored && m.ratio <= low, missed, "edge", cause, m.ratio, pa);
         const double gamma = m.ratio / (q_.C / q_.Q0);
         if (gamma < 1) {
             const int block = std::max(blocking(a), blocking(b));
@@ -371,13 +365,7 @@ private:
                 const Measure mm = face_measure(x[0], x[1], x[2], rr[0], rr[1], rr[2]);
                 return !mm.floored && mm.ratio >= high;
             });
-        const bool beyond = !m.floored && m.ratio >= high;
-        if (beyond) count_beyond(persisted, st.beyond, cause, missed);
-        if (missed) note_violation("triangle", st.checked_at, m.ratio, p[0]);
-        st.beyond = beyond;
-        st.sig = sig;
-        st.checked = true;
-        st.checked_at = t_;
+        record_check(st, sig, persisted, !m.floored && m.ratio >= high, missed, "triangle", cause, m.ratio, p[0]);
         const double gamma = m.ratio / (q_.C * q_.Q0);
         if (gamma > 1) {
             const int block = std::max({blocking(v[0]), blocking(v[1]), blocking(v[2])});
@@ -396,15 +384,22 @@ private:
         schedule(f, t_ + triangle_safe_duration(gamma, m.rho0, q_));
     }
 
-    /// An element found beyond the Q1 threshold (§8 correction 2): a miss when its previous
-    /// check found it in range; born bad when it is new; still bad when its previous check
-    /// found it beyond already (the repair then was refused or undone).
-    void count_beyond(bool persisted, bool was_beyond, const char* cause, bool& missed) {
-        switch (classify_beyond(persisted, was_beyond)) {
-            case BeyondCount::BornBad: ++c().born_bad[cause]; break;
-            case BeyondCount::StillBad: ++c().still_bad; break;
-            case BeyondCount::Miss: missed = true; break;
-        }
+    /// Counts a check's outcome and records it in the element's state. An element found beyond
+    /// the Q1 threshold (§8 correction 2) is a miss when its previous check found it in range,
+    /// born bad when it is new, still bad when its previous check found it beyond already (the
+    /// repair then was refused or undone); `missed` also carries what the auditor saw.
+    void record_check(ElementState& st, const Signature& sig, bool persisted, bool beyond, bool missed,
+                      const char* what, const char* cause, double ratio, const Point3& where) {
+        if (beyond) switch (classify_beyond(persisted, st.beyond)) {
+                case BeyondCount::BornBad: ++c().born_bad[cause]; break;
+                case BeyondCount::StillBad: ++c().still_bad; break;
+                case BeyondCount::Miss: missed = true; break;
+            }
+        if (missed) note_violation(what, st.checked_at, ratio, where);
+        st.beyond = beyond;
+        st.sig = sig;
+        st.checked = true;
+        st.checked_at = t_;
     }
 
     void note_violation(const char* what, double since, double ratio, const Point3& where) {
