@@ -100,38 +100,61 @@ SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
                                " has a non-finite coordinate (NaN or infinity)");
         m.add_vertex(soup.points[i]);
     }
-    std::unordered_map<std::uint64_t, std::uint32_t, PairHash> directed;  // (a,b) -> halfedge a->b
-    directed.reserve(soup.triangles.size() * 3);
+    const auto where = [](std::size_t t) { return "from_soup: triangle " + std::to_string(t); };
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         const auto& tri = soup.triangles[t];
-        const std::string where = "from_soup: triangle " + std::to_string(t);
         for (std::uint32_t i : tri)
             if (i >= nv)
-                throw InvalidInput(where + " uses vertex index " + std::to_string(i) +
+                throw InvalidInput(where(t) + " uses vertex index " + std::to_string(i) +
                                    " but there are only " + std::to_string(nv) + " vertices");
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-            throw InvalidInput(where + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+            throw InvalidInput(where(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
                                std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+    }
+    // The directed edges (corner j = 3t + i: tri[i] -> tri[i + 1]) listed per source vertex,
+    // each list sorted by (target, corner): the first use of (a, b) is a lower bound in a's list.
+    const std::size_t nc = soup.triangles.size() * 3;
+    const auto source = [&](std::size_t j) { return soup.triangles[j / 3][j % 3]; };
+    const auto target = [&](std::size_t j) { return soup.triangles[j / 3][(j % 3 + 1) % 3]; };
+    std::vector<std::uint32_t> out_begin(nv + 1, 0);
+    for (std::size_t j = 0; j < nc; ++j) ++out_begin[source(j) + 1];
+    std::partial_sum(out_begin.begin(), out_begin.end(), out_begin.begin());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> out(nc);  // (target, corner)
+    {
+        std::vector<std::uint32_t> fill(out_begin.begin(), out_begin.end() - 1);
+        for (std::size_t j = 0; j < nc; ++j) out[fill[source(j)]++] = {target(j), std::uint32_t(j)};
+    }
+    for (std::size_t v = 0; v < nv; ++v) std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1]);
+    constexpr std::uint32_t kNone = kInvalid;
+    const auto first_use = [&](std::uint32_t a, std::uint32_t b) {
+        const auto end = out.begin() + out_begin[a + 1];
+        const auto it = std::lower_bound(out.begin() + out_begin[a], end, std::pair{b, std::uint32_t(0)});
+        return it != end && it->first == b ? it->second : kNone;
+    };
+    std::vector<std::uint32_t> corner_halfedge(nc, kNone);
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
         const Face f = m.new_face();
         std::array<Halfedge, 3> hs;
         for (int i = 0; i < 3; ++i) {
             const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
-            if (directed.count(key(a, b)))
-                throw TopologyError(where + ": edge (" + std::to_string(a) + ", " +
+            const std::size_t j = 3 * t + std::size_t(i);
+            if (first_use(a, b) < j)
+                throw TopologyError(where(t) + ": edge (" + std::to_string(a) + ", " +
                                     std::to_string(b) +
                                     ") is used twice in the same direction (inconsistent "
                                     "orientation, or an edge shared by more than two triangles)");
-            auto it = directed.find(key(b, a));
+            const std::uint32_t back = first_use(b, a);
             Halfedge h;
-            if (it != directed.end()) {
-                h = twin(Halfedge(it->second));
+            if (back < j) {
+                h = twin(Halfedge(corner_halfedge[back]));
                 if (m.hface_[h.idx()] != kInvalid)
-                    throw TopologyError(where + ": edge (" + std::to_string(a) + ", " +
+                    throw TopologyError(where(t) + ": edge (" + std::to_string(a) + ", " +
                                         std::to_string(b) + ") has more than two triangles");
             } else {
                 h = m.new_edge(Vertex(a), Vertex(b));
             }
-            directed.emplace(key(a, b), h.idx());
+            corner_halfedge[j] = h.idx();
             hs[i] = h;
         }
         m.link_triangle(hs[0], hs[1], hs[2], f);
