@@ -21,6 +21,7 @@
 
 #include "../geometry/circumcenter_accuracy.hpp"
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/spatial_sort.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/mesh/soup.hpp"
 
@@ -36,11 +37,17 @@ struct VertexInfo {
     std::size_t hint = 0;           ///< a mixed cell near it
     std::uint32_t mesh_index = ~0u; ///< its index in the output (while extracting)
 };
+inline constexpr std::uint8_t kUntested = 255;
+
 struct CellInfo {
     Point3 cc{};       ///< circumcentre (a Voronoi vertex)
     double f = 0;      ///< Φ(cc) − t
     double clear = 0;  ///< a radius around cc free of the skin (Sample::clear)
     bool ready = false;
+    std::uint32_t simplex = 0;  ///< the mixed cell that holds cc
+    /// Per facet i, as last judged from this cell (the side it is looked at from): the
+    /// crossings of its dual edge, capped at 254; kUntested before the first judgement.
+    std::array<std::uint8_t, 4> hits{kUntested, kUntested, kUntested, kUntested};
     std::uint64_t id = 0;  ///< a number no other cell of this run has (0 until first asked)
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
@@ -200,6 +207,11 @@ private:
         return a + (fa / (fa - fb)) * (b - a);
     }
 
+    /// Is x in the box that holds every ball of radius √(w + t) (and so the skin)?
+    bool in_box(const Point3& x) const {
+        return x.x >= lo_.x && x.y >= lo_.y && x.z >= lo_.z && x.x <= hi_.x && x.y <= hi_.y && x.z <= hi_.z;
+    }
+
     /// Inserts a sample; the null handle when it coincides with one already there.
     Vertex add_sample(const Point3& p, std::size_t hint, Cell near = Cell()) {
         const std::size_t before = dt_.number_of_vertices();
@@ -232,6 +244,7 @@ private:
         };
         const double s = phi_.shrink();
         std::vector<Point3> seeds;
+        std::vector<std::size_t> seed_hints;  // a mixed cell at or near each seed
         for (std::size_t k = 0; k < phi_.simplices().size(); ++k) {
             const SkinSimplex& sx = phi_.simplices()[k];
             const bool birth = sx.dim == 0 && std::size_t(sx.vertices[0]) < phi_.input_balls() && sx.W < t_;
@@ -241,25 +254,34 @@ private:
             // The patch around z is a sphere of radius √(s(t − W)) or √((1 − s)(W − t)).
             const double r = birth ? std::sqrt(s * (t_ - sx.W)) : std::sqrt((1 - s) * (sx.W - t_));
             for (const Vec3& d : directions(k)) {
+                // Steps of r/2, or longer where the skin-free radius of the last sample
+                // allows (through the inside of a blob of atoms): the first crossing is kept.
                 std::size_t hint = k;
-                double fa = sx.W - t_;
+                Sample sa{sx.W - t_, 0.0};
                 Point3 a = sx.z;
+                double along = 0;
                 for (int step = 1; step < 100000; ++step) {
-                    const Point3 b = sx.z + (0.5 * r * step) * d;
-                    const double fb = f_at(b, hint);
-                    if ((fb < 0) != (fa < 0)) {
-                        seeds.push_back(root_between(a, fa, b, fb, hint));
+                    along += std::max(0.5 * r, sa.clear);
+                    const Point3 b = sx.z + along * d;
+                    const Sample sb = sample_at(b, hint);
+                    if ((sb.f < 0) != (sa.f < 0)) {
+                        seeds.push_back(root_between(a, sa.f, b, sb.f, hint));
+                        seed_hints.push_back(hint);
                         break;
                     }
+                    if (!in_box(b)) break;  // the skin lies in the box: a ray that left it misses
                     a = b;
-                    fa = fb;
+                    sa = sb;
                 }
             }
         }
         report_.seeds = seeds.size();
         DYNMESH_CHECK(seeds.size() >= 4, "mesh_skin: the skin has too few seed points");
-        std::size_t hint = 0;
-        for (const Point3& p : seeds) (void)add_sample(p, hint);
+        // Inserted along a space-filling curve, each from the cell of the one before: the
+        // walks of the triangulation stay short.
+        Cell near;
+        for (const std::uint32_t s : spatial_order(seeds))
+            if (const Vertex v = add_sample(seeds[s], seed_hints[s], near); v != Vertex()) near = v->cell();
         DYNMESH_CHECK(dt_.dimension() == 3, "mesh_skin: the seed points are coplanar");
     }
 
@@ -283,7 +305,15 @@ private:
             c->info().cc = to_p(CGAL::centroid(a, b, d, e));
         }
         std::size_t hint = c->vertex(0)->info().hint;
+        for (int k = 0; k < 4; ++k) {
+            const Cell n = c->neighbor(k);
+            if (n->info().ready && !dt_.is_infinite(n)) {
+                hint = n->info().simplex;
+                break;
+            }
+        }
         const Sample smp = sample_at(c->info().cc, hint);
+        c->info().simplex = std::uint32_t(hint);
         c->info().f = smp.f;
         c->info().clear = smp.clear;
         c->info().ready = true;
@@ -358,6 +388,7 @@ private:
         out.from = id_of(c);
         out.to = id_of(n);
         search(a, sa, b, sb, 0, out, hint);
+        c->info().hits[std::size_t(i)] = std::uint8_t(std::min(out.hits, 254));
         return out;
     }
 
@@ -449,8 +480,13 @@ private:
         for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) v->info().mesh_index = ~0u;
         std::vector<std::array<Vertex, 3>> restricted;
         for (auto f = dt_.finite_facets_begin(); f != dt_.finite_facets_end(); ++f) {
-            const Cell c = f->first;
-            const int i = f->second;
+            Cell c = f->first;
+            int i = f->second;
+            // Every facet was judged after its two cells last changed (at seeding or as part
+            // of an insertion's star): only those whose dual edge crossed the skin are searched
+            // again, for the crossing point.
+            canonical(c, i);
+            if (c->info().hits[std::size_t(i)] == 0) continue;
             const Crossing x = dual_crossing(c, i);
             if (x.hits == 0) continue;
             std::array<Vertex, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
