@@ -463,9 +463,13 @@ private:
     };
     std::vector<Pending> pending_;
 
+    /// Checks the pending elements (and those their repairs create) until none is left. When
+    /// the repairs do not settle (next to a singular point of the skin, insertions and
+    /// contractions can undo each other), the mesh is rebuilt at this time (the fallback);
+    /// a second time at the same time is an internal error.
     void drain() {
         std::size_t guard = 0;
-        const std::size_t limit = 200 * (mesh_.n_faces() + 1000);
+        std::size_t limit = kSettleChecks * (mesh_.n_faces() + 1000);
         while (!pending_.empty()) {
             const Pending p = pending_.back();
             pending_.pop_back();
@@ -474,11 +478,19 @@ private:
             } else if (p.id < mesh_.edges_size()) {
                 check_edge(Edge(p.id), p.cause);
             }
-            if (++guard > limit)
-                throw InternalError("grow_skin: the operations at t = " + std::to_string(t_) +
-                                    " do not settle (" + std::to_string(guard) + " checks)");
+            if (++guard <= limit) continue;
+            const std::string what = "the operations at t = " + std::to_string(t_) + " do not settle (" +
+                                     std::to_string(guard) + " checks)";
+            if (unsettled_at_ == t_) throw InternalError("grow_skin: " + what + ", after remeshing");
+            unsettled_at_ = t_;
+            remesh(what);
+            guard = 0;
+            limit = kSettleChecks * (mesh_.n_faces() + 1000);
         }
     }
+    /// Checks per triangle (plus 1,000) after which one instant's repairs count as not settling.
+    static constexpr std::size_t kSettleChecks = 20;
+    double unsettled_at_ = kInf;  ///< the time of the last remesh for repairs that did not settle
 
     /// Queues for an immediate check the edges and faces within two rings of `seeds` whose
     /// vertex set is new since their last check.

@@ -482,12 +482,13 @@ sys.exit(0 if d['checks'] > 0 and g['audit_samples'] > 0 and a['birth'] >= 1 and
         || fail "caffeine.cin: counters: $(cat c.json)"
     # A ligand (PQR) where a ball is born and joins the rest at once, through a neck smaller
     # than the mesh resolves: the mesh is rebuilt just after the neck (not before it), and every
-    # snapshot is valid with the alpha complex's topology.
+    # snapshot is valid with the alpha complex's topology. Next to that neck the repairs of one
+    # instant can undo each other: the mesh is then rebuilt too (no other fallback is expected).
     run 0 "$bin" skin "$data/molecules/bx6_7_lig_apbs.pqr" --grow --steps 8 --check -q --report l.json
     [ "$(json_get l.json "['violations']")" = 0 ] || fail "bx6 ligand: missed checks: $(cat l.json)"
     [ "$(json_get l.json "['check']['problems']")" = "[]" ] || fail "bx6 ligand: problems: $(cat l.json)"
-    python3 -c "import sys, json; d=json.load(open('l.json')); g=d['growth']
-sys.exit(0 if g['fallbacks'] >= 1 and all('smaller than the floor' in r for r in g['fallback_reasons']) else 1)" \
+    python3 -c "import sys, json; d=json.load(open('l.json')); g=d['growth']; why=g['fallback_reasons']
+sys.exit(0 if any('smaller than the floor' in r for r in why) and all('smaller than the floor' in r or 'do not settle' in r for r in why) else 1)" \
         || fail "bx6 ligand: counters: $(cat l.json)"
     # The every-step baseline grows the same skin with more checks (three atoms: every step
     # checks every element, too slow for a molecule in a test).
