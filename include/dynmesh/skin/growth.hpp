@@ -99,8 +99,9 @@ struct SkinGrowthCounters {
     /// Checks that found an element beyond the Q1 threshold whose previous check had found it
     /// beyond already (its repair was refused or undone by a neighbouring operation); not misses.
     std::size_t still_bad = 0;
-    /// Surgery that could not use its template (no two loops in the ball): the whole mesh was
-    /// remeshed at that time by mesh_skin.
+    /// The whole mesh remeshed by mesh_skin: at a surgery that could not use its template (no
+    /// two loops in the ball, a neck under the floor of ϱ), or when the repairs of one instant
+    /// did not settle (more than 20 checks per triangle at one time).
     std::size_t fallbacks = 0;
     std::size_t flow_fallbacks = 0;  ///< vertex moves done by Newton projection instead of the flow
     std::size_t evaluations = 0;     ///< vertex positions evaluated
@@ -122,7 +123,7 @@ struct SkinGrowthReport {
     double seconds = 0;
     /// The first violations, one line each (element, time, ratio, previous check, where).
     std::vector<std::string> violation_examples;
-    /// Why each surgery fell back to remeshing (the first ten).
+    /// Why the mesh was remeshed, each time (the first ten).
     std::vector<std::string> fallback_reasons;
 };
 
