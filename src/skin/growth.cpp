@@ -104,6 +104,7 @@ public:
             drain();
         }
         t_ = report_.t_end;
+        unfold();
         SkinGrowthResult result;
         result.final = snapshot();
         report_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -162,6 +163,7 @@ private:
             case Kind::SurgerySwitch: surgery_switch(e.id); break;
             case Kind::SurgeryOff: surgery_off(e.id); break;
             case Kind::Snapshot:
+                unfold();
                 if (o_.on_snapshot) o_.on_snapshot(snapshot());
                 ++report_.snapshots;
                 break;
@@ -947,6 +949,23 @@ private:
     }
 
     // ---- output ------------------------------------------------------------------------------
+    /// Before a snapshot: triangles (not exempt) whose normal points against ∇Φ at the foot of
+    /// their centroid form a fold, which the local operations cannot undo (a contraction next
+    /// to it is refused, as it would turn a triangle over): the mesh is rebuilt (a fallback).
+    void unfold() {
+        std::size_t inward = 0;
+        for (Face f : mesh_.faces()) {
+            if (exempt(f)) continue;
+            const auto v = mesh_.face_vertices(f);
+            const Point3 a = pos(v[0]), b = pos(v[1]), c = pos(v[2]);
+            std::size_t cell = vcell_[v[0].idx()];
+            const Point3 foot = project_to_skin(phi_, (a + b + c) / 3.0, t_, cell);
+            if (!is_finite(foot)) continue;
+            if (dot(cross(b - a, c - a), phi_.evaluate(foot, cell).gradient) <= 0) ++inward;
+        }
+        if (inward > 0) remesh(std::to_string(inward) + " triangle(s) turned inward at a snapshot");
+    }
+
     SkinSnapshot snapshot() {
         SkinSnapshot out;
         out.time = t_;

@@ -490,6 +490,13 @@ sys.exit(0 if d['checks'] > 0 and g['audit_samples'] > 0 and a['birth'] >= 1 and
     python3 -c "import sys, json; d=json.load(open('l.json')); g=d['growth']; why=g['fallback_reasons']
 sys.exit(0 if any('smaller than the floor' in r for r in why) and all('smaller than the floor' in r or 'do not settle' in r for r in why) else 1)" \
         || fail "bx6 ligand: counters: $(cat l.json)"
+    # With the default ten snapshots small02's growth passes a tunnel under the floor of ϱ after
+    # which short edges are missed (a known limit: exit 1 under --check) and a fold forms; the
+    # fold is rebuilt before the next snapshot, so no snapshot has a triangle turned inward.
+    run 1 "$bin" skin "$data/molecules/small02.pdb" --grow --check -q --report d.json
+    python3 -c "import sys, json; d=json.load(open('d.json')); p=d['check']['problems']; why=d['growth']['fallback_reasons']
+sys.exit(0 if p and all('missed check' in x for x in p) and any('turned inward at a snapshot' in r for r in why) else 1)" \
+        || fail "small02, ten snapshots: $(cat d.json)"
     # The every-step baseline grows the same skin with more checks (three atoms: every step
     # checks every element, too slow for a molecule in a test).
     printf '0 0 0 1.7\n2.6 0.2 0 1.6\n1.2 2.3 0.1 1.5\n' > three.xyzr
