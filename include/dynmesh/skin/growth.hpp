@@ -100,8 +100,9 @@ struct SkinGrowthCounters {
     /// beyond already (its repair was refused or undone by a neighbouring operation); not misses.
     std::size_t still_bad = 0;
     /// The whole mesh remeshed by mesh_skin: at a surgery that could not use its template (no
-    /// two loops in the ball, a neck under the floor of ϱ), or when the repairs of one instant
-    /// did not settle (more than 20 checks per triangle at one time).
+    /// two loops in the ball, a neck under the floor of ϱ), when the repairs of one instant
+    /// did not settle (more than 20 checks per triangle at one time), or before a snapshot
+    /// with triangles turned against the skin's normal (a fold).
     std::size_t fallbacks = 0;
     std::size_t flow_fallbacks = 0;  ///< vertex moves done by Newton projection instead of the flow
     std::size_t evaluations = 0;     ///< vertex positions evaluated
