@@ -125,13 +125,12 @@ SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
         for (std::size_t j = 0; j < nc; ++j) out[fill[source(j)]++] = {target(j), std::uint32_t(j)};
     }
     for (std::size_t v = 0; v < nv; ++v) std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1]);
-    constexpr std::uint32_t kNone = kInvalid;
     const auto first_use = [&](std::uint32_t a, std::uint32_t b) {
         const auto end = out.begin() + out_begin[a + 1];
         const auto it = std::lower_bound(out.begin() + out_begin[a], end, std::pair{b, std::uint32_t(0)});
-        return it != end && it->first == b ? it->second : kNone;
+        return it != end && it->first == b ? it->second : kInvalid;
     };
-    std::vector<std::uint32_t> corner_halfedge(nc, kNone);
+    std::vector<std::uint32_t> corner_halfedge(nc, kInvalid);
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         const auto& tri = soup.triangles[t];
         const Face f = m.new_face();

@@ -102,16 +102,13 @@ public:
             }
             if (b.weight + t_ <= 0) continue;
             const double r = std::sqrt(b.weight + t_);
-            const Vec3 e{r, r, r};
-            lo_ = any ? Point3{std::min(lo_.x, b.center.x - r), std::min(lo_.y, b.center.y - r), std::min(lo_.z, b.center.z - r)}
-                      : b.center - e;
-            hi_ = any ? Point3{std::max(hi_.x, b.center.x + r), std::max(hi_.y, b.center.y + r), std::max(hi_.z, b.center.z + r)}
-                      : b.center + e;
+            box_.extend(b.center - Vec3{r, r, r});
+            box_.extend(b.center + Vec3{r, r, r});
             any = true;
         }
         DYNMESH_CHECK(any, "mesh_skin: the skin is empty at this time (no ball has a positive weight + t)");
-        rho_floor_ = options.rho_floor_factor * (counted ? radius_sum / double(counted) : norm(hi_ - lo_));
-        scale2_ = sqnorm(hi_ - lo_);
+        rho_floor_ = options.rho_floor_factor * (counted ? radius_sum / double(counted) : norm(box_.max - box_.min));
+        scale2_ = sqnorm(box_.max - box_.min);
     }
 
     SkinMeshResult run() {
@@ -207,11 +204,6 @@ private:
         return a + (fa / (fa - fb)) * (b - a);
     }
 
-    /// Is x in the box that holds every ball of radius √(w + t) (and so the skin)?
-    bool in_box(const Point3& x) const {
-        return x.x >= lo_.x && x.y >= lo_.y && x.z >= lo_.z && x.x <= hi_.x && x.y <= hi_.y && x.z <= hi_.z;
-    }
-
     /// Inserts a sample; the null handle when it coincides with one already there.
     Vertex add_sample(const Point3& p, std::size_t hint, Cell near = Cell()) {
         const std::size_t before = dt_.number_of_vertices();
@@ -269,7 +261,7 @@ private:
                         seed_hints.push_back(hint);
                         break;
                     }
-                    if (!in_box(b)) break;  // the skin lies in the box: a ray that left it misses
+                    if (!box_.contains(b)) break;  // the skin lies in the box: a ray that left it misses
                     a = b;
                     sa = sb;
                 }
@@ -375,8 +367,8 @@ private:
             const Point3 p2 = to_p(c->vertex((i + 3) & 3)->point());
             Vec3 nrm = normalized(cross(p1 - p0, p2 - p0));
             if (dot(nrm, to_p(c->vertex(i)->point()) - p0) > 0) nrm = -1.0 * nrm;
-            const Point3 mid = lo_ + 0.5 * (hi_ - lo_);
-            const double len = norm(a - mid) + norm(hi_ - lo_) + 1e-9;
+            const Point3 mid = box_.min + 0.5 * (box_.max - box_.min);
+            const double len = norm(a - mid) + norm(box_.max - box_.min) + 1e-9;
             b = a + len * nrm;
             sb = sample_at(b, hint);
         } else {
@@ -517,7 +509,7 @@ private:
     const SkinFunction& phi_;
     SkinMeshOptions opt_;
     double t_;
-    Point3 lo_{}, hi_{};
+    Bbox3 box_;  ///< holds every ball of radius √(w + t), and so the skin
     double rho_floor_ = 0;
     double scale2_ = 1;
     DT dt_;

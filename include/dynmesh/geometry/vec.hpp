@@ -77,6 +77,10 @@ struct Bbox3 {
         }
     }
     [[nodiscard]] double diagonal() const { return max.x >= min.x ? distance(min, max) : 0.0; }
+    /// Is p in the box (its boundary included)?
+    [[nodiscard]] constexpr bool contains(const Vec3& p) const {
+        return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
+    }
 };
 
 }  // namespace dynmesh
