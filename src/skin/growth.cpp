@@ -54,7 +54,8 @@ struct ElementState {
     Signature sig{kNone, kNone, kNone};
     double checked_at = 0;
     bool checked = false;
-    bool beyond = false;  ///< its last check found it beyond the Q1 threshold
+    bool beyond = false;   ///< its last check found its ratio beyond the Q1 threshold (floored λ)
+    bool floored = false;  ///< and ϱ under the floor, which leaves it out of the counts
 };
 
 class Grower {
@@ -317,7 +318,7 @@ private:
                 const Measure mm = edge_measure(xa, xb, rho_at(xa, ca), rho_at(xb, cb));
                 return !mm.floored && mm.ratio <= low;
             });
-        record_check(st, sig, persisted, !m.floored && m.ratio <= low, missed, "edge", cause, m.ratio, pa);
+        record_check(st, sig, persisted, m.ratio <= low, m.floored, missed, "edge", cause, m.ratio, pa);
         const double gamma = m.ratio / (q_.C / q_.Q0);
         if (gamma < 1) {
             const int block = std::max(blocking(a), blocking(b));
@@ -367,7 +368,7 @@ private:
                 const Measure mm = face_measure(x[0], x[1], x[2], rr[0], rr[1], rr[2]);
                 return !mm.floored && mm.ratio >= high;
             });
-        record_check(st, sig, persisted, !m.floored && m.ratio >= high, missed, "triangle", cause, m.ratio, p[0]);
+        record_check(st, sig, persisted, m.ratio >= high, m.floored, missed, "triangle", cause, m.ratio, p[0]);
         const double gamma = m.ratio / (q_.C * q_.Q0);
         if (gamma > 1) {
             const int block = std::max({blocking(v[0]), blocking(v[1]), blocking(v[2])});
@@ -388,17 +389,21 @@ private:
 
     /// Counts a check's outcome and records it in the element's state. An element found beyond
     /// the Q1 threshold (§8 correction 2) is a miss when its previous check found it in range,
-    /// born bad when it is new, still bad when its previous check found it beyond already (the
-    /// repair then was refused or undone); `missed` also carries what the auditor saw.
-    void record_check(ElementState& st, const Signature& sig, bool persisted, bool beyond, bool missed,
-                      const char* what, const char* cause, double ratio, const Point3& where) {
-        if (beyond) switch (classify_beyond(persisted, st.beyond)) {
+    /// born bad when it is new, or when its previous check found it beyond but under the floor
+    /// of ϱ (excluded then: cause "floor"), still bad when its previous check found it beyond
+    /// already (the repair then was refused or undone); `missed` also carries what the auditor
+    /// saw. Under the floor nothing is counted.
+    void record_check(ElementState& st, const Signature& sig, bool persisted, bool beyond, bool floored,
+                      bool missed, const char* what, const char* cause, double ratio, const Point3& where) {
+        if (beyond && !floored) switch (classify_beyond(persisted, st.beyond, st.floored)) {
                 case BeyondCount::BornBad: ++c().born_bad[cause]; break;
+                case BeyondCount::LeftFloor: ++c().born_bad["floor"]; break;
                 case BeyondCount::StillBad: ++c().still_bad; break;
                 case BeyondCount::Miss: missed = true; break;
             }
         if (missed) note_violation(what, st.checked_at, ratio, where);
         st.beyond = beyond;
+        st.floored = floored;
         st.sig = sig;
         st.checked = true;
         st.checked_at = t_;
@@ -805,10 +810,22 @@ private:
         if (s.cancelled || !s.active) return;
         std::vector<Vertex> region;
         for (Vertex v : mesh_.vertices())
-            if (vtag_[v.idx()] == static_cast<int>(id)) {
-                vtag_[v.idx()] = -1;
-                region.push_back(v);
+            if (vtag_[v.idx()] == static_cast<int>(id)) region.push_back(v);
+        // Its elements were exempt: their exemption clears now, so they count as new (§8
+        // correction 2), whatever state they had before the template.
+        fit_arrays();
+        for (Vertex v : region)
+            for (Halfedge h : mesh_.outgoing_halfedges(v)) {
+                const Face f = mesh_.face(h);
+                if (!f.is_valid()) continue;
+                faces_[f.idx()].checked = false;
+                Halfedge k = h;
+                do {
+                    edges_[SurfaceMesh::edge(k).idx()].checked = false;
+                    k = mesh_.next(k);
+                } while (k != h);
             }
+        for (Vertex v : region) vtag_[v.idx()] = -1;
         s.active = false;
         for (Vertex v : region) recheck_around({v}, "dissolution", true);
     }

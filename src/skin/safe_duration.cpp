@@ -31,9 +31,10 @@ double triangle_safe_duration(double gamma, double rho0, const SkinQuality& q) {
     return eps > 0 ? q.kappa_t * travel_duration(eps, rho0) : 0.0;
 }
 
-BeyondCount classify_beyond(bool persisted, bool was_beyond) {
+BeyondCount classify_beyond(bool persisted, bool was_beyond, bool was_floored) {
     if (!persisted) return BeyondCount::BornBad;
-    return was_beyond ? BeyondCount::StillBad : BeyondCount::Miss;
+    if (!was_beyond) return BeyondCount::Miss;
+    return was_floored ? BeyondCount::LeftFloor : BeyondCount::StillBad;
 }
 
 double min_angle_floor_deg(double Q) { return std::asin(1 / (Q * Q)) * 180 / std::numbers::pi; }

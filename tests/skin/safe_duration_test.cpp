@@ -57,10 +57,15 @@ TEST(SafeDuration, TravelDurationIsTheVoidSpheresTime) {
 
 /// §8 correction 2: only an element that was in range at its previous check is a miss.
 TEST(SafeDuration, BeyondTheThresholdIsAMissOnlyAfterAnInRangeCheck) {
-    EXPECT_EQ(classify_beyond(false, false), BeyondCount::BornBad);
-    EXPECT_EQ(classify_beyond(false, true), BeyondCount::BornBad);  // a stale state of another element
-    EXPECT_EQ(classify_beyond(true, true), BeyondCount::StillBad);
-    EXPECT_EQ(classify_beyond(true, false), BeyondCount::Miss);
+    for (bool floored : {false, true}) {
+        EXPECT_EQ(classify_beyond(false, false, floored), BeyondCount::BornBad);
+        EXPECT_EQ(classify_beyond(false, true, floored), BeyondCount::BornBad);  // a stale state of another element
+        // In range before, under the floor or not: the schedule should have caught it.
+        EXPECT_EQ(classify_beyond(true, false, floored), BeyondCount::Miss);
+    }
+    EXPECT_EQ(classify_beyond(true, true, false), BeyondCount::StillBad);
+    // Beyond but excluded by the floor before: its exclusion cleared, born bad (not still bad).
+    EXPECT_EQ(classify_beyond(true, true, true), BeyondCount::LeftFloor);
 }
 
 TEST(SafeDuration, MinimumAngleFloorAndFeasibility) {

@@ -44,11 +44,14 @@ struct SkinQuality {
 /// What a check that finds an element beyond the Q1 threshold counts (§8 correction 2).
 enum class BeyondCount {
     BornBad,   ///< the element is new (created, changed, or its exemption cleared) since its last check
+    LeftFloor, ///< its previous check found it beyond but under the floor of ϱ, which excludes it
+               ///< (§8 correction 2): the exclusion cleared, so it counts as born bad
     StillBad,  ///< its previous check found it beyond already: a repair was refused or undone
     Miss       ///< its previous check found it in range: the schedule let it cross (must never happen)
 };
-/// `persisted`: the same element was checked before; `was_beyond`: that check found it beyond.
-[[nodiscard]] BeyondCount classify_beyond(bool persisted, bool was_beyond);
+/// `persisted`: the same element was checked before; `was_beyond`: that check found its ratio
+/// beyond the threshold (measured against max(ϱ, floor)); `was_floored`: ϱ was under the floor then.
+[[nodiscard]] BeyondCount classify_beyond(bool persisted, bool was_beyond, bool was_floored);
 
 /// The minimum angle every triangle meeting [L] and [U] at Q has: asin(1/Q²), in degrees
 /// (11.39° at Q1 = 2.25).
