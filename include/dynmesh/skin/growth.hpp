@@ -95,7 +95,7 @@ struct SkinGrowthCounters {
     /// Operations put off because they touched a template (retried later).
     std::size_t deferred = 0;
     std::size_t violations = 0;                   ///< misses (§8 correction 2); must be 0
-    std::map<std::string, std::size_t> born_bad;  ///< by cause: flip, contraction, insertion, dissolution, remesh
+    std::map<std::string, std::size_t> born_bad;  ///< by cause: flip, contraction, insertion, dissolution, remesh, floor
     /// Checks that found an element beyond the Q1 threshold whose previous check had found it
     /// beyond already (its repair was refused or undone by a neighbouring operation); not misses.
     std::size_t still_bad = 0;
