@@ -538,13 +538,13 @@ private:
     void queue_faces_and_edges(const std::vector<Face>& faces, const char* cause) {
         for (Face f : faces) {
             pending_.push_back({true, f.idx(), cause});
-            const Halfedge h0 = mesh_.halfedge(f);
-            Halfedge h = h0;
-            do {
-                pending_.push_back({false, SurfaceMesh::edge(h).idx(), cause});
-                h = mesh_.next(h);
-            } while (h != h0);
+            for (Edge e : face_edges(f)) pending_.push_back({false, e.idx(), cause});
         }
+    }
+
+    std::array<Edge, 3> face_edges(Face f) const {
+        const Halfedge h = mesh_.halfedge(f), n = mesh_.next(h);
+        return {SurfaceMesh::edge(h), SurfaceMesh::edge(n), SurfaceMesh::edge(mesh_.next(n))};
     }
 
     void refresh_around(const std::vector<Vertex>& seeds, int rings) {
@@ -808,24 +808,19 @@ private:
             return;
         }
         if (s.cancelled || !s.active) return;
-        std::vector<Vertex> region;
-        for (Vertex v : mesh_.vertices())
-            if (vtag_[v.idx()] == static_cast<int>(id)) region.push_back(v);
         // Its elements were exempt: their exemption clears now, so they count as new (§8
         // correction 2), whatever state they had before the template.
         fit_arrays();
-        for (Vertex v : region)
-            for (Halfedge h : mesh_.outgoing_halfedges(v)) {
-                const Face f = mesh_.face(h);
-                if (!f.is_valid()) continue;
-                faces_[f.idx()].checked = false;
-                Halfedge k = h;
-                do {
-                    edges_[SurfaceMesh::edge(k).idx()].checked = false;
-                    k = mesh_.next(k);
-                } while (k != h);
+        for (Face f : template_faces(id)) {
+            faces_[f.idx()].checked = false;
+            for (Edge e : face_edges(f)) edges_[e.idx()].checked = false;
+        }
+        std::vector<Vertex> region;
+        for (Vertex v : mesh_.vertices())
+            if (vtag_[v.idx()] == static_cast<int>(id)) {
+                vtag_[v.idx()] = -1;
+                region.push_back(v);
             }
-        for (Vertex v : region) vtag_[v.idx()] = -1;
         s.active = false;
         for (Vertex v : region) recheck_around({v}, "dissolution", true);
     }

@@ -107,7 +107,7 @@ public:
             any = true;
         }
         DYNMESH_CHECK(any, "mesh_skin: the skin is empty at this time (no ball has a positive weight + t)");
-        rho_floor_ = options.rho_floor_factor * (counted ? radius_sum / double(counted) : norm(box_.max - box_.min));
+        rho_floor_ = options.rho_floor_factor * (counted ? radius_sum / double(counted) : box_.diagonal());
         scale2_ = sqnorm(box_.max - box_.min);
     }
 
@@ -368,7 +368,7 @@ private:
             Vec3 nrm = normalized(cross(p1 - p0, p2 - p0));
             if (dot(nrm, to_p(c->vertex(i)->point()) - p0) > 0) nrm = -1.0 * nrm;
             const Point3 mid = box_.min + 0.5 * (box_.max - box_.min);
-            const double len = norm(a - mid) + norm(box_.max - box_.min) + 1e-9;
+            const double len = norm(a - mid) + box_.diagonal() + 1e-9;
             b = a + len * nrm;
             sb = sample_at(b, hint);
         } else {
