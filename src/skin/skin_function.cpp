@@ -176,12 +176,17 @@ SkinFunction::SkinFunction(std::vector<WeightedPoint> balls, double s) : balls_(
             return *target;
         };
         if (sx.dim > 0) {
-            for (int i = 0; i < sx.dim; ++i) walk_.push_back({to(sx.vertices[std::size_t(i + 1)], -1), -1, 0.0});
-            walk_.push_back({to(sx.vertices[0], -1), -1, 0.0});
+            for (int i = 0; i < sx.dim; ++i) walk_.push_back({to(sx.vertices[std::size_t(i + 1)], -1), {0, 0, 0}, 0.0});
+            walk_.push_back({to(sx.vertices[0], -1), {0, 0, 0}, 0.0});
         }
         const WeightedPoint& b0 = balls_[std::size_t(sx.vertices[0])];
-        for (int j : sx.link)
-            walk_.push_back({to(-1, j), j, 2 * norm(balls_[std::size_t(j)].center - b0.center)});
+        for (int j : sx.link) {
+            // power(b0, q) − power(b_j, q) = 2 (q − z_0)·e − ‖e‖² − w_0 + w_j with e = z_j − z_0.
+            const WeightedPoint& bj = balls_[std::size_t(j)];
+            const Vec3 e = bj.center - b0.center;
+            const double len = norm(e);
+            walk_.push_back({to(-1, j), e / len, (len * len + b0.weight - bj.weight) / (2 * len)});
+        }
     }
     walk_begin_[simplices_.size()] = walk_.size();
 }
@@ -215,10 +220,9 @@ void SkinFunction::for_each_constraint(std::size_t k, const Point3& x, Fn&& fn) 
     }
     // q = z + u_ν/s in ν_δ: on the δ side of the power bisector with every link vertex j
     // (signed distance to that plane).
-    const Point3 q = sx.z + un / s_;
-    const double p0 = power(b0, q);
+    const Vec3 d = sx.z + un / s_ - b0.center;
     for (const WalkStep* end = walk_.data() + walk_begin_[k + 1]; step != end; ++step)
-        fn((p0 - power(balls_[std::size_t(step->ball)], q)) / step->span, step->target);
+        fn(dot(step->normal, d) - step->offset, step->target);
 }
 
 void SkinFunction::violated(std::size_t k, const Point3& x, std::vector<Move>& out) const {

@@ -102,11 +102,12 @@ private:
     [[nodiscard]] std::optional<std::size_t> neighbour(std::size_t k, int drop, int add) const;
 
     /// One constraint of a mixed cell, precomputed for the walk: the simplex a violation moves
-    /// to and, for a link ball, that ball and twice its distance to ball 0 of δ.
+    /// to and, for a link ball j, the power bisector of j and ball 0 of δ as a plane relative to
+    /// z_0: the signed distance of q beyond it is dot(normal, q − z_0) − offset.
     struct WalkStep {
         std::size_t target = 0;
-        int ball = -1;       ///< the link ball (−1 for a barycentric coordinate)
-        double span = 0;     ///< 2‖z_ball − z_0‖
+        Vec3 normal{0, 0, 0};  ///< (z_j − z_0)/‖z_j − z_0‖ (zero for a barycentric coordinate)
+        double offset = 0;     ///< (‖z_j − z_0‖² + w_0 − w_j)/(2‖z_j − z_0‖)
     };
     std::vector<WalkStep> walk_;           ///< per simplex, its constraints in order
     std::vector<std::size_t> walk_begin_;  ///< simplex k's: [walk_begin_[k], walk_begin_[k + 1])
