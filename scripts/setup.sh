@@ -7,7 +7,8 @@ set -euo pipefail
 DYNMESH_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 DYNMESH_PACKAGES=(g++ cmake ninja-build libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev
                   libmpfr-dev libcli11-dev nlohmann-json3-dev python3-matplotlib
-                  python3-vtk9 python3-meshio gemmi-dev tao-pegtl-dev)
+                  python3-vtk9 python3-meshio gemmi-dev tao-pegtl-dev python3-dev pybind11-dev
+                  python3-numpy python3-pytest)
 
 dynmesh_install_packages() {
     local missing=()

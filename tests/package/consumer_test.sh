@@ -18,6 +18,15 @@ for f in lib/libdynmesh.a include/dynmesh/version.hpp include/dynmesh/mesh/surfa
 done
 "$prefix/bin/dynmesh" --version | grep -q "^dynmesh [0-9]" || fail "the installed CLI does not print its version"
 
+# The Python module, when it was built: importable from the prefix alone.
+if compgen -G "$build/python/dynmesh*.so" > /dev/null; then
+    site=$(find "$prefix" -name 'dynmesh*.so' -path '*dist-packages*' -printf '%h\n' | head -1)
+    [ -n "$site" ] || fail "the Python module is not installed"
+    v=$(cd "$work" && PYTHONPATH="$site" /usr/bin/python3 -c "import dynmesh; print(dynmesh.__version__)") \
+        || fail "the installed Python module does not import"
+    [ "$v" = "$("$prefix/bin/dynmesh" --version | cut -d' ' -f2)" ] || fail "the Python module's version $v differs from the CLI's"
+fi
+
 cmake -S "$src/examples/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > "$work/consumer.log" \
     || fail "configuring the consumer failed: $(tail -5 "$work/consumer.log")"

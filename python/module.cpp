@@ -1,0 +1,162 @@
+// The Python module `dynmesh`: meshes as NumPy arrays (vertices float64 (n, 3), faces int64
+// (m, 3)) in and out, reports as dicts with the CLI's JSON field names, library errors as
+// Python exceptions (InvalidInput and TopologyError: ValueError; IoError: OSError;
+// InternalError: RuntimeError). Long calls release the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <string>
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/flips/flip_rules.hpp"
+#include "dynmesh/flips/flip_smooth.hpp"
+#include "dynmesh/io/mesh_io.hpp"
+#include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/mesh/surface_mesh.hpp"
+#include "dynmesh/version.hpp"
+
+namespace py = pybind11;
+using namespace dynmesh;
+
+namespace {
+
+using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+/// The mesh of the arrays (checked: shapes, finite coordinates, indices in range, a manifold).
+SurfaceMesh mesh_of(const Vertices& vertices, const Faces& faces) {
+    if (vertices.ndim() != 2 || vertices.shape(1) != 3)
+        throw InvalidInput("vertices must be an array of shape (n, 3), not of " + std::to_string(vertices.ndim()) +
+                           " dimension(s)" + (vertices.ndim() == 2 ? " with " + std::to_string(vertices.shape(1)) + " columns" : ""));
+    if (faces.ndim() != 2 || faces.shape(1) != 3)
+        throw InvalidInput("faces must be an array of shape (m, 3), not of " + std::to_string(faces.ndim()) +
+                           " dimension(s)" + (faces.ndim() == 2 ? " with " + std::to_string(faces.shape(1)) + " columns" : ""));
+    TriangleSoup soup;
+    const auto v = vertices.unchecked<2>();
+    const auto f = faces.unchecked<2>();
+    const py::ssize_t n = v.shape(0);
+    soup.points.reserve(std::size_t(n));
+    for (py::ssize_t i = 0; i < n; ++i) {
+        const Point3 p{v(i, 0), v(i, 1), v(i, 2)};
+        if (!is_finite(p)) throw InvalidInput("vertex " + std::to_string(i) + " has a coordinate that is not finite");
+        soup.points.push_back(p);
+    }
+    soup.triangles.reserve(std::size_t(f.shape(0)));
+    for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+        std::array<std::uint32_t, 3> t{};
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t idx = f(i, k);
+            if (idx < 0 || idx >= n)
+                throw InvalidInput("face " + std::to_string(i) + " refers to vertex " + std::to_string(idx) + ", not in [0, " +
+                                   std::to_string(n) + ")");
+            t[std::size_t(k)] = std::uint32_t(idx);
+        }
+        soup.triangles.push_back(t);
+    }
+    return SurfaceMesh::from_soup(soup);
+}
+
+/// The arrays of a mesh (fresh arrays owned by Python: they outlive the mesh).
+py::tuple arrays_of(SurfaceMesh mesh) {
+    mesh.garbage_collection();
+    Vertices vertices({py::ssize_t(mesh.n_vertices()), py::ssize_t(3)});
+    Faces faces({py::ssize_t(mesh.n_faces()), py::ssize_t(3)});
+    auto v = vertices.mutable_unchecked<2>();
+    auto f = faces.mutable_unchecked<2>();
+    for (Vertex x : mesh.vertices()) {
+        const Point3& p = mesh.position(x);
+        v(x.idx(), 0) = p.x;
+        v(x.idx(), 1) = p.y;
+        v(x.idx(), 2) = p.z;
+    }
+    // Corners from the tail of the face's halfedge: the order the faces were given in.
+    for (Face x : mesh.faces()) {
+        const Halfedge h = mesh.halfedge(x);
+        f(x.idx(), 0) = mesh.from_vertex(h).idx();
+        f(x.idx(), 1) = mesh.to_vertex(h).idx();
+        f(x.idx(), 2) = mesh.to_vertex(mesh.next(h)).idx();
+    }
+    return py::make_tuple(vertices, faces);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(dynmesh, m) {
+    m.doc() = "dynmesh: meshes that stay good while the thing they describe changes.\n\n"
+              "Meshes are NumPy arrays: vertices float64 of shape (n, 3), faces int64 of shape (m, 3).";
+    m.attr("__version__") = kVersion;
+
+    // Most derived first: pybind11 tries the translators in reverse order of registration.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const IoError& e) {
+            PyErr_SetString(PyExc_OSError, e.what());
+        } catch (const InvalidInput& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const TopologyError& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const InternalError& e) {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
+        }
+    });
+
+    m.def(
+        "read_mesh",
+        [](const std::string& path) {
+            SurfaceMesh mesh;
+            {
+                py::gil_scoped_release unlocked;
+                mesh = read_mesh(path);
+            }
+            return arrays_of(std::move(mesh));
+        },
+        py::arg("path"),
+        "Reads a closed or open triangle mesh (.off .obj .ply .stl); returns (vertices, faces).\n"
+        "Raises OSError when the file cannot be read, ValueError when it is malformed.");
+
+    m.def(
+        "write_mesh",
+        [](const std::string& path, const Vertices& vertices, const Faces& faces) {
+            const SurfaceMesh mesh = mesh_of(vertices, faces);
+            py::gil_scoped_release unlocked;
+            write_mesh(mesh, path);
+        },
+        py::arg("path"), py::arg("vertices"), py::arg("faces"),
+        "Writes the mesh (.off .obj .ply .vtk .vtp, by the extension).");
+
+    m.def(
+        "flip",
+        [](const Vertices& vertices, const Faces& faces, const std::string& criterion, double feature_angle_deg) {
+            SurfaceMesh mesh = mesh_of(vertices, faces);
+            const FlipRule rule = parse_flip_rule(criterion);
+            FlipReport r;
+            {
+                py::gil_scoped_release unlocked;
+                r = flip_all(mesh, {.rule = rule, .feature_angle_deg = feature_angle_deg});
+            }
+            py::dict report;
+            report["criterion"] = std::string(to_string(rule));
+            report["vertices"] = mesh.n_vertices();
+            report["faces"] = mesh.n_faces();
+            report["edges"] = mesh.n_edges();
+            report["flips"] = r.flips;
+            report["checks"] = r.checks;
+            report["pushes"] = r.pushes;
+            report["degenerate_tests"] = r.degenerate;
+            report["not_improving_tests"] = r.not_improving;
+            report["feature_angle_deg"] = feature_angle_deg;
+            report["feature_locked_tests"] = r.feature_locked;
+            report["converged"] = r.converged;
+            report["renumbered"] = r.renumbered;
+            report["seconds_flip"] = r.seconds;
+            py::tuple arrays = arrays_of(std::move(mesh));
+            return py::make_tuple(arrays[1], report);
+        },
+        py::arg("vertices"), py::arg("faces"), py::arg("criterion") = "angle", py::arg("feature_angle_deg") = 180.0,
+        "Flips edges until none is flippable under the criterion ('angle': Definition 3 of the\n"
+        "edge-flip paper; 'diametric': the diametric-ball rule; 'planar'); returns (faces, report).\n"
+        "Vertices never move. The report has the field names of `dynmesh flip --report`.");
+}

@@ -1,0 +1,116 @@
+"""The Python module against the CLI and the files it writes (run by ctest: python.pytest)."""
+import gc
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import dynmesh
+
+BIN = os.environ["DYNMESH_BIN"]
+DATA = os.environ["DYNMESH_DATA"]
+
+
+@pytest.fixture
+def tmp(tmp_path):
+    return tmp_path
+
+
+def octahedron():
+    v = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
+    f = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4],
+                  [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    return v, f
+
+
+def cycles(faces):
+    """Each face rotated to start at its smallest index (the same oriented triangle)."""
+    faces = np.asarray(faces)
+    shift = np.argmin(faces, axis=1)
+    return np.array([np.roll(t, -k) for t, k in zip(faces, shift)])
+
+
+def test_version_is_the_cli_version():
+    out = subprocess.run([BIN, "--version"], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["dynmesh", dynmesh.__version__]
+
+
+def test_round_trip_through_every_writable_format(tmp):
+    v, f = octahedron()
+    for ext in ("off", "obj", "ply"):
+        path = str(tmp / f"o.{ext}")
+        dynmesh.write_mesh(path, v, f)
+        v2, f2 = dynmesh.read_mesh(path)
+        assert v2.dtype == np.float64 and f2.dtype == np.int64
+        np.testing.assert_array_equal(v2, v)
+        np.testing.assert_array_equal(cycles(f2), cycles(f))
+    # Without a file between, the arrays come back as given, corner order included.
+    faces, report = dynmesh.flip(v, f)
+    assert report["flips"] == 0
+    np.testing.assert_array_equal(faces, f)
+
+
+def test_flip_matches_the_cli(tmp):
+    """The same flips and the same faces as `dynmesh flip` on a worsened bundled mesh (the CLI
+    reads the arrays the module flips, written by the module)."""
+    worse = str(tmp / "worse.off")
+    subprocess.run([BIN, "worsen", os.path.join(DATA, "blobby.off"), "-o", worse, "--rounds", "3",
+                    "--seed", "1", "-q"], check=True)
+    v, f = dynmesh.read_mesh(worse)
+    given = tmp / "given.off"  # written here, corner order as in the arrays
+    given.write_text("OFF\n%d %d 0\n" % (len(v), len(f)) + "".join("%r %r %r\n" % tuple(p) for p in v)
+                     + "".join("3 %d %d %d\n" % tuple(t) for t in f))
+    given = str(given)
+    for criterion in ("angle", "delaunay"):
+        out, rep = str(tmp / f"cli_{criterion}.off"), str(tmp / f"cli_{criterion}.json")
+        subprocess.run([BIN, "flip", given, "-o", out, "--criterion", criterion, "--report", rep, "-q"], check=True)
+        cli = json.load(open(rep))
+        faces, report = dynmesh.flip(v, f, criterion=criterion)
+        assert report["flips"] > 0
+        for key in ("criterion", "vertices", "faces", "edges", "flips", "checks", "pushes", "converged"):
+            assert report[key] == cli[key], key
+        cli_v, cli_faces = dynmesh.read_mesh(out)
+        np.testing.assert_array_equal(cli_v, v)
+        np.testing.assert_array_equal(cycles(faces), cycles(cli_faces))
+
+
+def test_errors_are_python_exceptions(tmp):
+    v, f = octahedron()
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        dynmesh.flip(v[:, :2], f)
+    with pytest.raises(ValueError, match="refers to vertex 6"):
+        dynmesh.flip(v, np.vstack([f[:-1], [[0, 1, 6]]]))
+    with pytest.raises(ValueError, match="unknown flip criterion 'nope'"):
+        dynmesh.flip(v, f, criterion="nope")
+    with pytest.raises(OSError, match="missing.off"):
+        dynmesh.read_mesh(str(tmp / "missing.off"))
+    bad = tmp / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    with pytest.raises((ValueError, OSError), match="bad.off"):
+        dynmesh.read_mesh(str(bad))
+    nonmanifold = np.vstack([f, [[0, 2, 4]]])
+    with pytest.raises(ValueError):
+        dynmesh.flip(v, nonmanifold)
+
+
+def test_arrays_outlive_their_mesh_and_inputs_are_not_kept():
+    v, f = octahedron()
+    refs = sys.getrefcount(v), sys.getrefcount(f)
+    faces, report = dynmesh.flip(v, f)
+    del report
+    gc.collect()
+    assert (sys.getrefcount(v), sys.getrefcount(f)) == refs  # the module keeps no reference
+    del v, f
+    gc.collect()
+    assert faces.shape == (8, 3) and faces.dtype == np.int64
+    assert sorted(np.bincount(faces.ravel())) == [4] * 6  # an octahedron still: every vertex in 4 faces
+
+
+def test_signatures_and_docstrings_are_visible():
+    doc = dynmesh.flip.__doc__
+    assert "flip(vertices: numpy.ndarray" in doc and "criterion: str = 'angle'" in doc
+    assert "field names of `dynmesh flip --report`" in doc
+    assert "NumPy arrays" in dynmesh.__doc__
