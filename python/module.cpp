@@ -6,12 +6,14 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/flips/flip_smooth.hpp"
+#include "dynmesh/flips/worsen.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
@@ -159,4 +161,38 @@ PYBIND11_MODULE(dynmesh, m) {
         "Flips edges until none is flippable under the criterion ('angle': Definition 3 of the\n"
         "edge-flip paper; 'diametric': the diametric-ball rule; 'planar'); returns (faces, report).\n"
         "Vertices never move. The report has the field names of `dynmesh flip --report`.");
+
+    m.def(
+        "worsen",
+        [](const Vertices& vertices, const Faces& faces, std::size_t rounds, double probability,
+           double min_dihedral_deg, std::uint64_t seed) {
+            if (!(probability >= 0 && probability <= 1))
+                throw InvalidInput("probability must be in [0, 1], not " + std::to_string(probability));
+            SurfaceMesh mesh = mesh_of(vertices, faces);
+            WorsenReport r;
+            double seconds = 0;
+            {
+                py::gil_scoped_release unlocked;
+                const auto t0 = std::chrono::steady_clock::now();
+                r = worsen(mesh, {.rounds = rounds, .probability = probability, .min_dihedral_deg = min_dihedral_deg,
+                                  .seed = seed});
+                seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            }
+            py::dict report;
+            report["vertices"] = mesh.n_vertices();
+            report["faces"] = mesh.n_faces();
+            report["flips"] = r.flips;
+            report["attempts"] = r.attempts;
+            report["rejected"] = r.rejected;
+            report["rounds"] = rounds;
+            report["seed"] = seed;
+            report["seconds_worsen"] = seconds;
+            py::tuple arrays = arrays_of(std::move(mesh));
+            return py::make_tuple(arrays[1], report);
+        },
+        py::arg("vertices"), py::arg("faces"), py::arg("rounds") = 5, py::arg("probability") = 0.5,
+        py::arg("min_dihedral_deg") = 120.0, py::arg("seed") = 1,
+        "Random edge flips (each edge tried with the given probability per round; a flip that\n"
+        "makes a dihedral angle smaller than min_dihedral_deg is undone), reproducible by seed;\n"
+        "returns (faces, report) with the field names of `dynmesh worsen --report`.");
 }

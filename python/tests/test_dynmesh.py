@@ -33,6 +33,13 @@ def cycles(faces):
     return np.array([np.roll(t, -k) for t, k in zip(faces, shift)])
 
 
+def write_off(path, v, f):
+    """An OFF file written here (not by dynmesh), corners in the arrays' order."""
+    path.write_text("OFF\n%d %d 0\n" % (len(v), len(f)) + "".join("%r %r %r\n" % tuple(p) for p in v)
+                    + "".join("3 %d %d %d\n" % tuple(t) for t in f))
+    return str(path)
+
+
 def test_version_is_the_cli_version():
     out = subprocess.run([BIN, "--version"], capture_output=True, text=True, check=True).stdout.split()
     assert out == ["dynmesh", dynmesh.__version__]
@@ -60,10 +67,7 @@ def test_flip_matches_the_cli(tmp):
     subprocess.run([BIN, "worsen", os.path.join(DATA, "blobby.off"), "-o", worse, "--rounds", "3",
                     "--seed", "1", "-q"], check=True)
     v, f = dynmesh.read_mesh(worse)
-    given = tmp / "given.off"  # written here, corner order as in the arrays
-    given.write_text("OFF\n%d %d 0\n" % (len(v), len(f)) + "".join("%r %r %r\n" % tuple(p) for p in v)
-                     + "".join("3 %d %d %d\n" % tuple(t) for t in f))
-    given = str(given)
+    given = write_off(tmp / "given.off", v, f)
     for criterion in ("angle", "delaunay"):
         out, rep = str(tmp / f"cli_{criterion}.off"), str(tmp / f"cli_{criterion}.json")
         subprocess.run([BIN, "flip", given, "-o", out, "--criterion", criterion, "--report", rep, "-q"], check=True)
@@ -75,6 +79,23 @@ def test_flip_matches_the_cli(tmp):
         cli_v, cli_faces = dynmesh.read_mesh(out)
         np.testing.assert_array_equal(cli_v, v)
         np.testing.assert_array_equal(cycles(faces), cycles(cli_faces))
+
+
+def test_worsen_matches_the_cli(tmp):
+    v, f = dynmesh.read_mesh(os.path.join(DATA, "blobby.off"))
+    given = write_off(tmp / "given.off", v, f)
+    out, rep = str(tmp / "cli.off"), str(tmp / "cli.json")
+    subprocess.run([BIN, "worsen", given, "-o", out, "--rounds", "2", "--seed", "7", "--probability", "0.3",
+                    "--min-dihedral", "100", "--report", rep, "-q"], check=True)
+    cli = json.load(open(rep))
+    faces, report = dynmesh.worsen(v, f, rounds=2, probability=0.3, min_dihedral_deg=100, seed=7)
+    assert report["flips"] > 0 and report["rejected"] > 0
+    for key in ("vertices", "faces", "flips", "attempts", "rejected", "rounds", "seed"):
+        assert report[key] == cli[key], key
+    np.testing.assert_array_equal(cycles(faces), cycles(dynmesh.read_mesh(out)[1]))
+    assert not np.array_equal(cycles(dynmesh.worsen(v, f, seed=8)[0]), cycles(faces))  # the seed is used
+    with pytest.raises(ValueError, match="probability"):
+        dynmesh.worsen(v, f, probability=1.5)
 
 
 def test_errors_are_python_exceptions(tmp):
