@@ -27,14 +27,17 @@ namespace {
 using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
+/// An InvalidInput unless `a` has shape (rows, 3).
+void require_rows_of_3(const py::array& a, const char* what, const char* rows) {
+    if (a.ndim() == 2 && a.shape(1) == 3) return;
+    throw InvalidInput(std::string(what) + " must be an array of shape (" + rows + ", 3), not of " + std::to_string(a.ndim()) +
+                       " dimension(s)" + (a.ndim() == 2 ? " with " + std::to_string(a.shape(1)) + " columns" : ""));
+}
+
 /// The mesh of the arrays (checked: shapes, finite coordinates, indices in range, a manifold).
 SurfaceMesh mesh_of(const Vertices& vertices, const Faces& faces) {
-    if (vertices.ndim() != 2 || vertices.shape(1) != 3)
-        throw InvalidInput("vertices must be an array of shape (n, 3), not of " + std::to_string(vertices.ndim()) +
-                           " dimension(s)" + (vertices.ndim() == 2 ? " with " + std::to_string(vertices.shape(1)) + " columns" : ""));
-    if (faces.ndim() != 2 || faces.shape(1) != 3)
-        throw InvalidInput("faces must be an array of shape (m, 3), not of " + std::to_string(faces.ndim()) +
-                           " dimension(s)" + (faces.ndim() == 2 ? " with " + std::to_string(faces.shape(1)) + " columns" : ""));
+    require_rows_of_3(vertices, "vertices", "n");
+    require_rows_of_3(faces, "faces", "m");
     TriangleSoup soup;
     const auto v = vertices.unchecked<2>();
     const auto f = faces.unchecked<2>();
@@ -60,27 +63,31 @@ SurfaceMesh mesh_of(const Vertices& vertices, const Faces& faces) {
     return SurfaceMesh::from_soup(soup);
 }
 
-/// The arrays of a mesh (fresh arrays owned by Python: they outlive the mesh).
-py::tuple arrays_of(SurfaceMesh mesh) {
-    mesh.garbage_collection();
-    Vertices vertices({py::ssize_t(mesh.n_vertices()), py::ssize_t(3)});
+/// The faces of a mesh without garbage, as a fresh array owned by Python, corners from the
+/// tail of each face's halfedge: the order the faces were given in.
+Faces faces_of(const SurfaceMesh& mesh) {
     Faces faces({py::ssize_t(mesh.n_faces()), py::ssize_t(3)});
-    auto v = vertices.mutable_unchecked<2>();
     auto f = faces.mutable_unchecked<2>();
-    for (Vertex x : mesh.vertices()) {
-        const Point3& p = mesh.position(x);
-        v(x.idx(), 0) = p.x;
-        v(x.idx(), 1) = p.y;
-        v(x.idx(), 2) = p.z;
-    }
-    // Corners from the tail of the face's halfedge: the order the faces were given in.
     for (Face x : mesh.faces()) {
         const Halfedge h = mesh.halfedge(x);
         f(x.idx(), 0) = mesh.from_vertex(h).idx();
         f(x.idx(), 1) = mesh.to_vertex(h).idx();
         f(x.idx(), 2) = mesh.to_vertex(mesh.next(h)).idx();
     }
-    return py::make_tuple(vertices, faces);
+    return faces;
+}
+
+/// The vertices of a mesh without garbage, as a fresh array owned by Python.
+Vertices vertices_of(const SurfaceMesh& mesh) {
+    Vertices vertices({py::ssize_t(mesh.n_vertices()), py::ssize_t(3)});
+    auto v = vertices.mutable_unchecked<2>();
+    for (Vertex x : mesh.vertices()) {
+        const Point3& p = mesh.position(x);
+        v(x.idx(), 0) = p.x;
+        v(x.idx(), 1) = p.y;
+        v(x.idx(), 2) = p.z;
+    }
+    return vertices;
 }
 
 }  // namespace
@@ -113,7 +120,8 @@ PYBIND11_MODULE(dynmesh, m) {
                 py::gil_scoped_release unlocked;
                 mesh = read_mesh(path);
             }
-            return arrays_of(std::move(mesh));
+            mesh.garbage_collection();
+            return py::make_tuple(vertices_of(mesh), faces_of(mesh));
         },
         py::arg("path"),
         "Reads a closed or open triangle mesh (.off .obj .ply .stl); returns (vertices, faces).\n"
@@ -154,8 +162,7 @@ PYBIND11_MODULE(dynmesh, m) {
             report["converged"] = r.converged;
             report["renumbered"] = r.renumbered;
             report["seconds_flip"] = r.seconds;
-            py::tuple arrays = arrays_of(std::move(mesh));
-            return py::make_tuple(arrays[1], report);
+            return py::make_tuple(faces_of(mesh), report);
         },
         py::arg("vertices"), py::arg("faces"), py::arg("criterion") = "angle", py::arg("feature_angle_deg") = 180.0,
         "Flips edges until none is flippable under the criterion ('angle': Definition 3 of the\n"
@@ -166,8 +173,6 @@ PYBIND11_MODULE(dynmesh, m) {
         "worsen",
         [](const Vertices& vertices, const Faces& faces, std::size_t rounds, double probability,
            double min_dihedral_deg, std::uint64_t seed) {
-            if (!(probability >= 0 && probability <= 1))
-                throw InvalidInput("probability must be in [0, 1], not " + std::to_string(probability));
             SurfaceMesh mesh = mesh_of(vertices, faces);
             WorsenReport r;
             double seconds = 0;
@@ -187,8 +192,7 @@ PYBIND11_MODULE(dynmesh, m) {
             report["rounds"] = rounds;
             report["seed"] = seed;
             report["seconds_worsen"] = seconds;
-            py::tuple arrays = arrays_of(std::move(mesh));
-            return py::make_tuple(arrays[1], report);
+            return py::make_tuple(faces_of(mesh), report);
         },
         py::arg("vertices"), py::arg("faces"), py::arg("rounds") = 5, py::arg("probability") = 0.5,
         py::arg("min_dihedral_deg") = 120.0, py::arg("seed") = 1,

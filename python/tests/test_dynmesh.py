@@ -14,11 +14,6 @@ BIN = os.environ["DYNMESH_BIN"]
 DATA = os.environ["DYNMESH_DATA"]
 
 
-@pytest.fixture
-def tmp(tmp_path):
-    return tmp_path
-
-
 def octahedron():
     v = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
     f = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4],
@@ -45,10 +40,10 @@ def test_version_is_the_cli_version():
     assert out == ["dynmesh", dynmesh.__version__]
 
 
-def test_round_trip_through_every_writable_format(tmp):
+def test_round_trip_through_every_writable_format(tmp_path):
     v, f = octahedron()
     for ext in ("off", "obj", "ply"):
-        path = str(tmp / f"o.{ext}")
+        path = str(tmp_path / f"o.{ext}")
         dynmesh.write_mesh(path, v, f)
         v2, f2 = dynmesh.read_mesh(path)
         assert v2.dtype == np.float64 and f2.dtype == np.int64
@@ -60,16 +55,16 @@ def test_round_trip_through_every_writable_format(tmp):
     np.testing.assert_array_equal(faces, f)
 
 
-def test_flip_matches_the_cli(tmp):
+def test_flip_matches_the_cli(tmp_path):
     """The same flips and the same faces as `dynmesh flip` on a worsened bundled mesh (the CLI
     reads the arrays the module flips, written by the module)."""
-    worse = str(tmp / "worse.off")
+    worse = str(tmp_path / "worse.off")
     subprocess.run([BIN, "worsen", os.path.join(DATA, "blobby.off"), "-o", worse, "--rounds", "3",
                     "--seed", "1", "-q"], check=True)
     v, f = dynmesh.read_mesh(worse)
-    given = write_off(tmp / "given.off", v, f)
+    given = write_off(tmp_path / "given.off", v, f)
     for criterion in ("angle", "delaunay"):
-        out, rep = str(tmp / f"cli_{criterion}.off"), str(tmp / f"cli_{criterion}.json")
+        out, rep = str(tmp_path / f"cli_{criterion}.off"), str(tmp_path / f"cli_{criterion}.json")
         subprocess.run([BIN, "flip", given, "-o", out, "--criterion", criterion, "--report", rep, "-q"], check=True)
         cli = json.load(open(rep))
         faces, report = dynmesh.flip(v, f, criterion=criterion)
@@ -81,10 +76,10 @@ def test_flip_matches_the_cli(tmp):
         np.testing.assert_array_equal(cycles(faces), cycles(cli_faces))
 
 
-def test_worsen_matches_the_cli(tmp):
+def test_worsen_matches_the_cli(tmp_path):
     v, f = dynmesh.read_mesh(os.path.join(DATA, "blobby.off"))
-    given = write_off(tmp / "given.off", v, f)
-    out, rep = str(tmp / "cli.off"), str(tmp / "cli.json")
+    given = write_off(tmp_path / "given.off", v, f)
+    out, rep = str(tmp_path / "cli.off"), str(tmp_path / "cli.json")
     subprocess.run([BIN, "worsen", given, "-o", out, "--rounds", "2", "--seed", "7", "--probability", "0.3",
                     "--min-dihedral", "100", "--report", rep, "-q"], check=True)
     cli = json.load(open(rep))
@@ -98,7 +93,7 @@ def test_worsen_matches_the_cli(tmp):
         dynmesh.worsen(v, f, probability=1.5)
 
 
-def test_errors_are_python_exceptions(tmp):
+def test_errors_are_python_exceptions(tmp_path):
     v, f = octahedron()
     with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
         dynmesh.flip(v[:, :2], f)
@@ -107,8 +102,8 @@ def test_errors_are_python_exceptions(tmp):
     with pytest.raises(ValueError, match="unknown flip criterion 'nope'"):
         dynmesh.flip(v, f, criterion="nope")
     with pytest.raises(OSError, match="missing.off"):
-        dynmesh.read_mesh(str(tmp / "missing.off"))
-    bad = tmp / "bad.off"
+        dynmesh.read_mesh(str(tmp_path / "missing.off"))
+    bad = tmp_path / "bad.off"
     bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
     with pytest.raises((ValueError, OSError), match="bad.off"):
         dynmesh.read_mesh(str(bad))
