@@ -2,7 +2,6 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <set>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -47,16 +46,13 @@ void run_stats(const StatsArgs& a, RunContext& ctx) {
     const QualityReport q = mesh_quality(mesh, opt);
     nlohmann::json rep = {{"command", "stats"}, {"mesh", a.mesh}};
     if (surface) rep["surface"] = surface->spec();
-    static const std::set<std::string> counts = {"vertices", "faces", "edges", "euler",
-                                                  "boundary_edges", "degenerate_faces",
-                                                  "self_intersections"};
     for (const auto& [name, value] : flatten(q)) {
-        if (counts.count(name))
-            rep[name] = static_cast<long long>(value);
-        else
-            rep[name] = value;
+        switch (quality_field_kind(name)) {
+            case QualityFieldKind::Count: rep[name] = static_cast<long long>(value); break;
+            case QualityFieldKind::Flag: rep[name] = value != 0; break;
+            case QualityFieldKind::Real: rep[name] = value; break;
+        }
     }
-    rep["closed"] = q.closed;
     if (!a.against.empty()) {
         progress.stage("Hausdorff distance to " + a.against);
         const SurfaceMesh other = load_mesh(a.against);

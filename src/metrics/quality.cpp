@@ -1,6 +1,7 @@
 #include "dynmesh/metrics/quality.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -123,6 +124,14 @@ QualityReport mesh_quality(const SurfaceMesh& mesh, const QualityOptions& option
             hausdorff_to_surface(mesh, *options.surface, options.hausdorff_sampling);
     if (options.self_intersections) r.self_intersecting_pairs = count_self_intersections(mesh);
     return r;
+}
+
+QualityFieldKind quality_field_kind(std::string_view name) {
+    static constexpr std::array<std::string_view, 7> kCounts = {
+        "vertices", "faces", "edges", "euler", "boundary_edges", "degenerate_faces", "self_intersections"};
+    if (name == "closed") return QualityFieldKind::Flag;
+    return std::find(kCounts.begin(), kCounts.end(), name) != kCounts.end() ? QualityFieldKind::Count
+                                                                             : QualityFieldKind::Real;
 }
 
 std::vector<std::pair<std::string, double>> flatten(const QualityReport& r) {

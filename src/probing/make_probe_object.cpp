@@ -112,18 +112,24 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
                            "' (expected sphere:R, ellipsoid:a,b,c, torus:R,r, balls:FILE, "
                            "genus2, circle2:R, star2:R or a mesh file)");
     } else {
-        const TriangleSoup soup = read_soup(spec);
-        std::unique_ptr<MeshOracle> mesh;
-        try {
-            mesh = std::make_unique<MeshOracle>(soup, options);
-        } catch (const InvalidInput& e) {
-            throw InvalidInput(spec + ": " + e.what());
-        }
-        check_extent(mesh->bbox(), spec);
-        out.interior_points = mesh->interior_points();
-        out.omega = omega_of(mesh->bbox());
-        out.object = std::move(mesh);
+        out = make_probe_object(read_soup(spec), spec, options);
     }
+    return out;
+}
+
+ProbeSetup make_probe_object(const TriangleSoup& soup, const std::string& name, OracleOptions options) {
+    ProbeSetup out;
+    out.spec = name;
+    std::unique_ptr<MeshOracle> mesh;
+    try {
+        mesh = std::make_unique<MeshOracle>(soup, options);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(name + ": " + e.what());
+    }
+    check_extent(mesh->bbox(), name);
+    out.interior_points = mesh->interior_points();
+    out.omega = omega_of(mesh->bbox());
+    out.object = std::move(mesh);
     return out;
 }
 

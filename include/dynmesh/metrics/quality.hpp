@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -98,5 +99,11 @@ struct QualityReport {
 /// when computed "hausdorff", "hausdorff_mesh_to_surface", "hausdorff_surface_to_mesh";
 /// when computed "self_intersections".
 [[nodiscard]] std::vector<std::pair<std::string, double>> flatten(const QualityReport& report);
+
+/// How reports write a field of flatten(): "vertices", "faces", "edges", "euler",
+/// "boundary_edges", "degenerate_faces" and "self_intersections" are counts (integers),
+/// "closed" is a flag (a boolean), the others are real numbers.
+enum class QualityFieldKind { Count, Flag, Real };
+[[nodiscard]] QualityFieldKind quality_field_kind(std::string_view name);
 
 }  // namespace dynmesh

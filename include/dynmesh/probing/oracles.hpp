@@ -260,5 +260,9 @@ struct ProbeSetup {
 /// \throw InvalidInput for a malformed spec or an object the oracle refuses; IoError for an
 /// unreadable or malformed file.
 [[nodiscard]] ProbeSetup make_probe_object(const std::string& spec, OracleOptions options = {});
+/// The object of a closed mesh given as a triangle soup (a MeshOracle), Ω and the interior
+/// points as for a mesh file; `name` prefixes the messages. \throw InvalidInput as MeshOracle.
+[[nodiscard]] ProbeSetup make_probe_object(const TriangleSoup& soup, const std::string& name,
+                                           OracleOptions options = {});
 
 }  // namespace dynmesh

@@ -1,0 +1,124 @@
+#include "arrays.hpp"
+
+#include "dynmesh/error.hpp"
+#include "dynmesh/mesh/soup.hpp"
+
+namespace dynmesh::python {
+
+void require_shape(const py::array& a, const char* what, const char* rows, py::ssize_t cols) {
+    if (a.ndim() == 2 && a.shape(1) == cols) return;
+    throw InvalidInput(std::string(what) + " must be an array of shape (" + rows + ", " + std::to_string(cols) +
+                       "), not of " + std::to_string(a.ndim()) + " dimension(s)" +
+                       (a.ndim() == 2 ? " with " + std::to_string(a.shape(1)) + " columns" : ""));
+}
+
+namespace {
+
+template <class P, int D>
+std::vector<P> points_of(const Doubles& a, const char* what) {
+    require_shape(a, what, "n", D);
+    const auto v = a.unchecked<2>();
+    std::vector<P> out(std::size_t(v.shape(0)));
+    for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+        for (int k = 0; k < D; ++k) {
+            const double x = v(i, k);
+            if (!std::isfinite(x))
+                throw InvalidInput(std::string(what) + ": point " + std::to_string(i) + " has a coordinate that is not finite");
+            out[std::size_t(i)][std::size_t(k)] = x;
+        }
+    }
+    return out;
+}
+
+template <class P, int D>
+P point_of(const Doubles& a, const char* what) {
+    if (a.ndim() != 1 || a.shape(0) != D)
+        throw InvalidInput(std::string(what) + " must be a sequence of " + std::to_string(D) + " numbers");
+    P p{};
+    for (int k = 0; k < D; ++k) {
+        p[std::size_t(k)] = a.at(k);
+        if (!std::isfinite(p[std::size_t(k)])) throw InvalidInput(std::string(what) + " has a coordinate that is not finite");
+    }
+    return p;
+}
+
+}  // namespace
+
+std::vector<Point3> points3_of(const Doubles& a, const char* what) { return points_of<Point3, 3>(a, what); }
+std::vector<Vec2> points2_of(const Doubles& a, const char* what) { return points_of<Vec2, 2>(a, what); }
+Point3 point3_of(const Doubles& a, const char* what) { return point_of<Point3, 3>(a, what); }
+Vec2 point2_of(const Doubles& a, const char* what) { return point_of<Vec2, 2>(a, what); }
+
+SurfaceMesh mesh_of(const Doubles& vertices, const Indices& faces) {
+    TriangleSoup soup;
+    soup.points = points3_of(vertices, "vertices");
+    require_shape(faces, "faces", "m", 3);
+    const auto f = faces.unchecked<2>();
+    const auto n = std::int64_t(soup.points.size());
+    soup.triangles.reserve(std::size_t(f.shape(0)));
+    for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+        std::array<std::uint32_t, 3> t{};
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t idx = f(i, k);
+            if (idx < 0 || idx >= n)
+                throw InvalidInput("face " + std::to_string(i) + " refers to vertex " + std::to_string(idx) + ", not in [0, " +
+                                   std::to_string(n) + ")");
+            t[std::size_t(k)] = std::uint32_t(idx);
+        }
+        soup.triangles.push_back(t);
+    }
+    return SurfaceMesh::from_soup(soup);
+}
+
+Indices faces_of(const SurfaceMesh& mesh) {
+    Indices faces({py::ssize_t(mesh.n_faces()), py::ssize_t(3)});
+    auto f = faces.mutable_unchecked<2>();
+    for (Face x : mesh.faces()) {
+        const Halfedge h = mesh.halfedge(x);
+        f(x.idx(), 0) = mesh.from_vertex(h).idx();
+        f(x.idx(), 1) = mesh.to_vertex(h).idx();
+        f(x.idx(), 2) = mesh.to_vertex(mesh.next(h)).idx();
+    }
+    return faces;
+}
+
+Doubles vertices_of(const SurfaceMesh& mesh) {
+    Doubles vertices({py::ssize_t(mesh.n_vertices()), py::ssize_t(3)});
+    auto v = vertices.mutable_unchecked<2>();
+    for (Vertex x : mesh.vertices()) {
+        const Point3& p = mesh.position(x);
+        v(x.idx(), 0) = p.x;
+        v(x.idx(), 1) = p.y;
+        v(x.idx(), 2) = p.z;
+    }
+    return vertices;
+}
+
+py::tuple compact_arrays_of(const SurfaceMesh& mesh, std::vector<Vertex>* kept) {
+    std::vector<std::int64_t> index(mesh.vertices_size(), -1);
+    Doubles vertices({py::ssize_t(mesh.n_vertices()), py::ssize_t(3)});
+    auto v = vertices.mutable_unchecked<2>();
+    py::ssize_t n = 0;
+    if (kept) kept->clear();
+    for (Vertex x : mesh.vertices()) {
+        const Point3& p = mesh.position(x);
+        v(n, 0) = p.x;
+        v(n, 1) = p.y;
+        v(n, 2) = p.z;
+        index[x.idx()] = n++;
+        if (kept) kept->push_back(x);
+    }
+    Indices faces({py::ssize_t(mesh.n_faces()), py::ssize_t(3)});
+    auto f = faces.mutable_unchecked<2>();
+    py::ssize_t m = 0;
+    for (Face x : mesh.faces()) {
+        const Halfedge h = mesh.halfedge(x);
+        f(m, 0) = index[mesh.from_vertex(h).idx()];
+        f(m, 1) = index[mesh.to_vertex(h).idx()];
+        f(m, 2) = index[mesh.to_vertex(mesh.next(h)).idx()];
+        ++m;
+    }
+    return py::make_tuple(vertices, faces);
+}
+
+}  // namespace dynmesh::python

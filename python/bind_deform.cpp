@@ -1,0 +1,236 @@
+// DeformingMesh: a surface mesh kept good while its samples move (advance / update / queued
+// edits / current mesh / reports).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/error.hpp"
+
+namespace dynmesh::python {
+
+namespace {
+
+py::list violations_list(const std::vector<ViolationRecord>& records) {
+    py::list out;
+    for (const ViolationRecord& v : records) {
+        py::dict d;
+        d["t"] = v.t;
+        d["kind"] = std::string(to_string(v.kind));
+        d["detail"] = v.detail;
+        out.append(d);
+    }
+    return out;
+}
+
+/// The work counters with the column names of the CLI's per-time-unit log (deform's log.csv).
+void put_counters(py::dict& d, const UpdateCounters& c) {
+    d["flips"] = c.flips;
+    d["insertions"] = c.insertions;
+    d["removals"] = c.removals;
+    d["changes"] = c.changes();
+    d["samples_inserted"] = c.samples_inserted;
+    d["samples_deleted"] = c.samples_deleted;
+    d["rebuilds"] = c.rebuilds;
+    d["rollbacks"] = c.rollbacks;
+    d["flip_refusals"] = c.flip_refusals;
+    d["update_seconds"] = c.seconds;
+}
+
+/// The Python object: the library's DeformingMesh and the reference mesh it was started on.
+struct PyDeformingMesh {
+    std::unique_ptr<SurfaceMesh> reference;
+    std::unique_ptr<DeformingMesh> mesh;
+    std::size_t samples = 0;
+
+    const DeformingMesh& get() const { return *mesh; }
+};
+
+std::vector<Point3> positions_of(const Doubles& positions, std::size_t at_least) {
+    std::vector<Point3> p = points3_of(positions, "positions");
+    if (p.size() < at_least)
+        throw InvalidInput("positions has " + std::to_string(p.size()) + " rows; every sample id up to " +
+                           std::to_string(at_least - 1) + " needs one");
+    return p;
+}
+
+}  // namespace
+
+void bind_deform(py::module_& m) {
+    py::class_<PyDeformingMesh>(m, "DeformingMesh",
+                                "A mesh of a surface known only through moving samples, updated at scheduled\n"
+                                "time steps (Cheng & Dey). Time is discrete: call advance(t, positions) for\n"
+                                "t = 1, 2, ... and update() when it says update_due.")
+        .def(py::init([](const Doubles& positions, double lambda_, double kappa, std::optional<double> h0,
+                         std::optional<int> horizon, std::optional<Indices> reference_faces, bool emergency_steps,
+                         std::uint64_t seed) {
+                 auto self = std::make_unique<PyDeformingMesh>();
+                 const std::vector<Point3> p = points3_of(positions, "positions");
+                 DeformParams params;
+                 params.lambda = lambda_;
+                 params.kappa = kappa;
+                 params.h0 = h0;
+                 if (horizon) params.horizon = *horizon;
+                 params.emergency_steps = emergency_steps;
+                 params.seed = seed;
+                 InitialSurface initial;
+                 if (reference_faces) {
+                     self->reference = std::make_unique<SurfaceMesh>(mesh_of(positions, *reference_faces));
+                     initial.reference = self->reference.get();
+                 }
+                 self->samples = p.size();
+                 py::gil_scoped_release unlocked;
+                 self->mesh = std::make_unique<DeformingMesh>(p, params, initial);
+                 return self;
+             }),
+             py::arg("positions"), py::arg("lambda_"), py::arg("kappa") = kPracticalKappa, py::arg("h0") = py::none(),
+             py::arg("horizon") = py::none(), py::arg("reference_faces") = py::none(),
+             py::arg("emergency_steps") = true, py::arg("seed") = 1,
+             "positions: the samples at t = 0, (n, 3). lambda_: how far any surface point moves in one\n"
+             "time unit at most. kappa: the step constant (next step floor(R / (kappa lambda)) later).\n"
+             "h0: the sampling radius (estimated when None). horizon: no step after this time.\n"
+             "reference_faces: faces (m, 3) over the positions of a closed mesh of the surface at\n"
+             "t = 0 (the first mesh is the restricted Delaunay triangulation of the net against it;\n"
+             "without it the mesh is reconstructed from the samples, which must then be dense).")
+        .def(
+            "advance",
+            [](PyDeformingMesh& self, int t, const Doubles& positions) {
+                const std::vector<Point3> p = positions_of(positions, self.get().id_capacity());
+                StepReport s;
+                {
+                    py::gil_scoped_release unlocked;
+                    s = self.mesh->advance(t, p);
+                }
+                py::dict d;
+                d["t"] = s.t;
+                d["update_due"] = s.update_due;
+                d["emergency"] = s.emergency;
+                d["max_displacement"] = s.max_displacement;
+                d["R"] = s.R;
+                d["violations"] = violations_list(s.violations);
+                return d;
+            },
+            py::arg("t"), py::arg("positions"),
+            "Moves every live sample to positions[id] at integer time t (greater than the last one);\n"
+            "returns the step report (update_due: call update() now).")
+        .def(
+            "update",
+            [](PyDeformingMesh& self) {
+                UpdateReport u;
+                {
+                    py::gil_scoped_release unlocked;
+                    u = self.mesh->update();
+                }
+                py::dict d;
+                d["t"] = u.t;
+                d["emergency"] = u.emergency;
+                put_counters(d, u.counters);
+                d["R_before"] = u.R_before;
+                d["R_after"] = u.R_after;
+                d["next_step"] = u.next_step;
+                d["samples"] = u.samples;
+                d["vertices"] = u.vertices;
+                d["vertices_before"] = u.vertices_before;
+                d["violations"] = violations_list(u.violations);
+                return d;
+            },
+            "The paper's MeshUpdate at the current time: refinement, the queued insertions, the\n"
+            "queued deletions, the next step. Returns the update report.")
+        .def(
+            "queue_insertion",
+            [](PyDeformingMesh& self, const Doubles& p) { return self.mesh->queue_insertion(point3_of(p, "p")); },
+            py::arg("p"),
+            "Queues a new sample at p; returns its id. It joins at the next update; pass its position\n"
+            "to advance() from now on.")
+        .def(
+            "queue_deletion", [](PyDeformingMesh& self, SampleId id) { self.mesh->queue_deletion(id); }, py::arg("id"),
+            "Queues the deletion of a live sample (it stays live until the next update).")
+        .def(
+            "mesh",
+            [](const PyDeformingMesh& self) {
+                std::vector<Vertex> kept;
+                const py::tuple vf = compact_arrays_of(self.get().mesh(), &kept);
+                std::vector<std::int64_t> samples(kept.size());
+                for (std::size_t i = 0; i < kept.size(); ++i) samples[i] = self.get().sample_of(kept[i]);
+                return py::make_tuple(vf[0], vf[1], adopt_flat(std::move(samples)));
+            },
+            "The current mesh: (vertices (n, 3), faces (m, 3), samples (n,)), samples[i] being the\n"
+            "sample id of vertex i.")
+        .def_property_readonly("time", [](const PyDeformingMesh& self) { return self.get().time(); })
+        .def_property_readonly("next_step", [](const PyDeformingMesh& self) { return self.get().next_step(); })
+        .def_property_readonly("id_capacity", [](const PyDeformingMesh& self) { return self.get().id_capacity(); },
+                               "One past the largest sample id handed out (advance() needs this many rows).")
+        .def_property_readonly("live_samples", [](const PyDeformingMesh& self) { return self.get().live_samples(); })
+        .def_property_readonly("updates", [](const PyDeformingMesh& self) { return self.get().updates(); })
+        .def_property_readonly(
+            "init_report",
+            [](const PyDeformingMesh& self) {
+                const InitReport& r = self.get().init_report();
+                py::dict d;
+                d["h0"] = r.h0;
+                d["h0_estimated"] = r.h0_estimated;
+                d["samples"] = r.samples;
+                d["init_vertices"] = r.vertices;
+                d["faces"] = r.faces;
+                d["R0"] = r.R0;
+                d["next_step"] = r.next_step;
+                d["tri0"] = r.tri0;
+                d["euler"] = r.euler;
+                d["components"] = r.components;
+                d["invariant_failures"] = r.invariant_failures;
+                d["nonempty_balls"] = r.nonempty_balls;
+                d["seconds_init"] = r.seconds;
+                return d;
+            },
+            "What the start at t = 0 did (h0, the first mesh and how it was built, its topology).")
+        .def_property_readonly(
+            "report",
+            [](const PyDeformingMesh& self) {
+                const DeformingMesh& dm = self.get();
+                py::dict d;
+                d["time_units"] = dm.time();
+                d["updates"] = dm.updates();
+                put_counters(d, dm.totals());
+                d["seconds_updates"] = dm.totals().seconds;
+                d["samples"] = dm.live_samples();
+                d["vertices"] = dm.mesh().n_vertices();
+                d["violations"] = dm.violations().size();
+                d["violation_examples"] = violations_list(dm.violations());
+                return d;
+            },
+            "Totals over all updates so far (the field names of `dynmesh deform --report`).")
+        .def(
+            "check",
+            [](const PyDeformingMesh& self, bool self_intersections) {
+                InvariantReport r;
+                {
+                    py::gil_scoped_release unlocked;
+                    r = self.get().check_invariants({.self_intersections = self_intersections});
+                }
+                py::dict d;
+                d["ok"] = r.ok;
+                d["problems"] = r.failures;
+                d["R"] = r.R;
+                d["min_spacing"] = r.min_spacing;
+                d["max_radius_edge"] = r.max_radius_edge;
+                d["max_dormant_distance"] = r.max_dormant_distance;
+                d["nonempty_balls"] = r.nonempty_balls;
+                d["self_intersections"] = r.self_intersections;
+                d["samples"] = r.samples;
+                d["vertices"] = r.vertices;
+                d["dormant"] = r.dormant;
+                return d;
+            },
+            py::arg("self_intersections") = true,
+            "The paper's invariants (closed manifold with the first mesh's topology, radius-edge\n"
+            "ratios, spacing, dormant lists, empty diametric balls, no self-intersection): a dict\n"
+            "with ok, problems and the measured figures.");
+}
+
+}  // namespace dynmesh::python
