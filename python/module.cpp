@@ -65,7 +65,7 @@ PYBIND11_MODULE(dynmesh, m) {
             write_mesh(mesh, path);
         },
         py::arg("path"), py::arg("vertices"), py::arg("faces"),
-        "Writes the mesh (.off .obj .ply .vtk .vtp, by the extension).");
+        "Writes the mesh (.off .obj .ply .stl .vtk .vtp, by the extension).");
 
     bind_flips(m);
     bind_deform(m);

@@ -214,7 +214,7 @@ void register_flip(CLI::App& root, int& result) {
     CLI::App* sub = root.add_subcommand(
         "flip", "Smooth a closed triangle mesh by edge flips until no edge is flippable");
     sub->add_option("input", args->input, "Input mesh (.off .obj .ply .stl)")->required();
-    sub->add_option("-o,--output", args->output, "Output mesh (.off .obj .ply .vtk .vtp)")->required();
+    sub->add_option("-o,--output", args->output, "Output mesh (.off .obj .ply .stl .vtk .vtp)")->required();
     sub->add_option("--criterion", args->criterion,
                     "angle: Definition 3 of the edge-flip paper; delaunay: diametric-ball rule")
         ->check(CLI::IsMember({"angle", "delaunay"}))

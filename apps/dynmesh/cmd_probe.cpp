@@ -116,6 +116,8 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     require_writable_mesh_extension(a.output);
     if (a.eps.has_value() == a.delta.has_value()) throw UsageError("give exactly one of --eps and --delta");
     if (a.dim != 2 && a.dim != 3) throw UsageError("--dim must be 2 or 3");
+    if (a.dim == 2 && lower_extension(a.output) == ".stl")
+        throw UsageError("-o " + a.output + ": STL holds triangles only; a curve (--dim 2) goes to .off .obj .ply .vtk or .vtp");
     if (is_planar_object(a.object) != (a.dim == 2))
         throw UsageError(a.dim == 2 ? "--dim 2: the object must be a planar curve (circle2:R or star2:R), got " + a.object
                                     : a.object + " is a planar curve: give --dim 2");
@@ -342,7 +344,7 @@ void register_probe(CLI::App& root, int& result) {
                     "curves circle2:R, star2:R")
         ->required();
     sub->add_option("-o,--output", args->output,
-                    "The mesh (.off .obj .ply .vtk .vtp); with --dim 2 the closed polyline in the same formats")
+                    "The mesh (.off .obj .ply .stl .vtk .vtp); with --dim 2 the closed polyline in the same formats but .stl")
         ->required();
     sub->add_option("--eps", args->eps, "Refinement size: no restricted Delaunay ball larger than this")
         ->check(finite_number())

@@ -56,7 +56,7 @@ struct QuadtreeArgs {
 
 /// Output formats: the simplex-mesh formats (both dimensions) and, in 2D, the soup formats.
 const std::vector<std::string> kSimplexExtensions = {".node", ".ele", ".off", ".vtu", ".mesh"};
-const std::vector<std::string> kSoupExtensions2D = {".obj", ".ply", ".vtk", ".vtp"};
+const std::vector<std::string> kSoupExtensions2D = {".obj", ".ply", ".stl", ".vtk", ".vtp"};
 
 template <int D>
 struct Op {
@@ -582,7 +582,7 @@ void register_quadtree(CLI::App& root, int& result) {
     sub->add_option("-o,--output", args->output,
                     "Output mesh by extension: .node (writes OUT.node + OUT.ele, Triangle/TetGen), "
                     ".off (3D: the boundary surface), .vtu (VTK unstructured grid), .mesh "
-                    "(Medit); 2D also .obj .ply .vtk .vtp (z = 0)")
+                    "(Medit); 2D also .obj .ply .stl .vtk .vtp (z = 0)")
         ->required();
     sub->add_option("--ops", args->ops,
                     "Update script applied in order after the build: '+ x y [z]' inserts, "

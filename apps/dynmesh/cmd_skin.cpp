@@ -318,7 +318,7 @@ void register_skin(CLI::App& root, int& result) {
                 "length scale of the skin (circumradius <= C Q0 rho, angles >= 30 deg)");
     sub->add_option("molecule", args->molecule, "The molecule: .pdb/.ent, .cif/.mmcif (gemmi), .pqr or .xyzr; or the ball set itself as .cin (x y z w per line, w = r^2, as CGAL's skin examples)")->required();
     sub->add_option("-o,--output", args->output,
-                    "The mesh (.off .obj .ply .vtk .vtp); .ply/.vtk/.vtp carry the vertex field rho and the "
+                    "The mesh (.off .obj .ply .stl .vtk .vtp); .ply/.vtk/.vtp carry the vertex field rho and the "
                     "face field min_angle_deg");
     sub->add_option("--shrink", args->shrink, "The shrink factor s in (0, 1) (default 0.5); weights are r^2/s")
         ->check(finite_number());

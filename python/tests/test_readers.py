@@ -2,10 +2,10 @@
 
 VTK's own readers (Debian python3-vtk9, VTK 9.1) and meshio (python3-meshio 7.0) read the .vtp, .vtu,
 .pvd, .vtk, .ply, .obj, .off, .mesh and .node/.ele files of `flip`, `worsen`, `sample`, `experiment`,
-`qmesh`, `deform`, `probe` and `skin`; their point counts, cell counts per cell type and point/cell
+`qmesh`, `deform`, `probe` and `skin`, and the .stl of those with `-o`; their point counts, cell counts per cell type and point/cell
 data fields are compared with the run's JSON report (`--report`, `deform`'s per-time-unit log.csv) or
-with the same mesh read by another reader from another file of the same run. No subcommand writes STL
-(checked below: `-o x.stl` is a usage error), so there is no STL to read.
+with the same mesh read by another reader from another file of the same run. STL (binary, float32,
+no shared vertices) is read by meshio and VTK and compared with the report and the run's .off points.
 
 A reader that cannot read one of our files is not skipped: each such case is a strict xfail in
 `test_meshio_limitations`, naming meshio's limitation (the same files are read by VTK, or at the byte
@@ -750,16 +750,46 @@ def test_skin_growth_series(tmp_path):
 
 # ---- what is not written, and what meshio cannot read ------------------------------------------------
 
-@pytest.mark.parametrize("argv", [
-    ["worsen", BLOBBY], ["flip", BLOBBY], ["sample", "--samples", 100], ["probe", "sphere:1", "--eps", 0.08],
-    ["skin", "MOLECULE"], ["qmesh", DATA / "dots.node"]], ids=lambda a: a[0])
-def test_no_subcommand_writes_stl(tmp_path, argv):
-    """No STL writer: `-o x.stl` is a usage error (exit 2) for every subcommand with -o, so no STL file
-    needs reading here. If one starts writing STL, read it above."""
+@pytest.mark.parametrize("argv,faces_key", [
+    (["worsen", BLOBBY], "faces"), (["flip", BLOBBY], "faces"), (["sample", "--samples", 100], "faces"),
+    (["probe", "sphere:1", "--eps", 0.08], "facets"), (["skin", "MOLECULE"], "triangles"),
+    (["qmesh", DATA / "dots.node"], "elements")], ids=lambda a: a[0] if isinstance(a, list) else a)
+def test_stl_outputs(tmp_path, argv, faces_key):
+    """`-o x.stl` (binary STL, float32 corners) read by meshio and by vtkSTLReader: the report's
+    triangle count, its vertex count once the readers merge the corners, and the same points
+    (rounded to float32) as the run's .off output."""
     argv = [write_molecule(tmp_path) if a == "MOLECULE" else a for a in argv]
-    proc = subprocess.run([BIN, *map(str, argv), "-o", str(tmp_path / "x.stl"), "-q"], capture_output=True, text=True)
-    assert proc.returncode == 2, proc.stderr
-    assert not (tmp_path / "x.stl").exists()
+    dynmesh(*argv, "-o", tmp_path / "x.stl", "--report", tmp_path / "stl.json")
+    dynmesh(*argv, "-o", tmp_path / "x.off")
+    rep = report(tmp_path / "stl.json")
+    off_points = np.unique(meshio_read(tmp_path / "x.off", "off").points.astype(np.float32), axis=0)
+    mesh = meshio.stl.read(str(tmp_path / "x.stl"))
+    assert len(mesh.cells_dict["triangle"]) == rep[faces_key]
+    assert len(mesh.points) == rep["vertices"]
+    np.testing.assert_array_equal(np.unique(mesh.points.astype(np.float32), axis=0), off_points)
+    # The same oriented triangles: corner coordinates, each triangle rotated to a canonical start.
+    def oriented(points, triangles):
+        corners = points.astype(np.float32)[triangles]  # (m, 3, 3)
+        out = set()
+        for t in corners:
+            keys = [tuple(map(float, c)) for c in t]
+            k = keys.index(min(keys))
+            out.add(tuple(keys[k:] + keys[:k]))
+        return out
+    off = meshio_read(tmp_path / "x.off", "off")
+    assert oriented(mesh.points, mesh.cells_dict["triangle"]) == oriented(off.points, off.cells_dict["triangle"])
+    reader = vtk.vtkSTLReader()
+    reader.SetFileName(str(tmp_path / "x.stl"))
+    reader.Update()
+    out = reader.GetOutput()
+    assert (out.GetNumberOfPoints(), out.GetNumberOfCells()) == (rep["vertices"], rep[faces_key])
+
+
+def test_stl_refuses_a_curve(tmp_path):
+    proc = subprocess.run([BIN, "probe", "circle2:1", "--dim", "2", "--eps", "0.05", "-o", str(tmp_path / "c.stl"), "-q"],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2 and "STL holds triangles only" in proc.stderr
+    assert not (tmp_path / "c.stl").exists()
 
 
 def _meshio_vtp(tmp_path):

@@ -212,6 +212,28 @@ void write_ply(AtomicWriter& out, const TriangleSoup& soup, const WriteOptions& 
         }
 }
 
+/// Binary STL: an 80-byte header (not starting with "solid"), the triangle count, then per
+/// triangle its unit normal (zero when degenerate), its corners as float32 and a zero
+/// attribute word. STL has no shared vertices and no fields.
+void write_stl(AtomicWriter& out, const TriangleSoup& soup) {
+    std::string header = "binary STL written by dynmesh";
+    header.resize(80, ' ');
+    out.put(header);
+    out.put_little_endian(static_cast<std::uint32_t>(soup.triangles.size()));
+    for (const auto& t : soup.triangles) {
+        const Point3& a = soup.points[t[0]];
+        const Point3& b = soup.points[t[1]];
+        const Point3& c = soup.points[t[2]];
+        const Vec3 n = cross(b - a, c - a);
+        const double len = norm(n);
+        const Vec3 u = len > 0 && std::isfinite(len) ? n / len : Vec3{};
+        for (double x : {u.x, u.y, u.z}) out.put_little_endian(static_cast<float>(x));
+        for (const Point3* p : {&a, &b, &c})
+            for (double x : {p->x, p->y, p->z}) out.put_little_endian(static_cast<float>(x));
+        out.put_little_endian(std::uint16_t{0});
+    }
+}
+
 void write_vtk_scalars(AtomicWriter& out, const std::vector<ScalarField>& fields) {
     for (const ScalarField& f : fields) {
         out.put("SCALARS " + f.name + " double 1\nLOOKUP_TABLE default\n");
@@ -366,7 +388,7 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
                    const char* fn, const char* vertex_count, const char* face_count) {
     const detail::FileContext ctx(path);
     const std::string ext = detail::lower_extension(path);
-    enum class Format { Off, Obj, Ply, Vtk, Vtp };
+    enum class Format { Off, Obj, Ply, Stl, Vtk, Vtp };
     Format format = Format::Off;
     if (ext == ".off")
         format = Format::Off;
@@ -374,6 +396,8 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
         format = Format::Obj;
     else if (ext == ".ply")
         format = Format::Ply;
+    else if (ext == ".stl")
+        format = Format::Stl;
     else if (ext == ".vtk")
         format = Format::Vtk;
     else if (ext == ".vtp")
@@ -412,6 +436,18 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
         (format == Format::Vtk || format == Format::Vtp))
         throw InvalidInput(where + ": face fields cannot go with polylines in a " + ext +
                            " file (VTK cell data would need a value per line as well)");
+    if (format == Format::Stl) {
+        if (!opt.polylines.empty())
+            throw InvalidInput(where + ": STL holds triangles only, not polylines");
+        if (soup.triangles.size() > std::numeric_limits<std::uint32_t>::max())
+            throw InvalidInput(where + ": more triangles than binary STL can count (2^32 - 1)");
+        constexpr double kFloatMax = std::numeric_limits<float>::max();
+        for (std::size_t i = 0; i < nv; ++i)
+            for (std::size_t k = 0; k < 3; ++k)
+                if (std::fabs(soup.points[i][k]) > kFloatMax)
+                    throw InvalidInput(where + ": vertex " + std::to_string(i) +
+                                       " has a coordinate beyond the float range STL stores");
+    }
     const bool as_float = format == Format::Ply;
     validate_fields(opt.vertex_fields, nv, fn, "vertex", vertex_count, as_float);
     validate_fields(opt.face_fields, soup.triangles.size(), fn, "face", face_count, as_float);
@@ -426,6 +462,9 @@ void write_checked(const TriangleSoup& soup, const fs::path& path, const WriteOp
             break;
         case Format::Ply:
             write_ply(out, soup, opt);
+            break;
+        case Format::Stl:
+            write_stl(out, soup);
             break;
         case Format::Vtk:
             write_vtk(out, soup, opt);
@@ -466,7 +505,7 @@ std::string xml_escaped(std::string_view s) {
 }  // namespace
 
 std::vector<std::string> writable_mesh_extensions() {
-    return {".off", ".obj", ".ply", ".vtk", ".vtp"};
+    return {".off", ".obj", ".ply", ".stl", ".vtk", ".vtp"};
 }
 
 void write_soup(const TriangleSoup& soup, const fs::path& path, const WriteOptions& options) {

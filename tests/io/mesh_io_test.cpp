@@ -2,9 +2,12 @@
 
 #include "dynmesh/io/mesh_io.hpp"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <charconv>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -346,14 +349,42 @@ TEST(MeshIo, PvdListsTheSeries) {
     EXPECT_FALSE(fs::exists(dir / "bad.pvd"));
 }
 
+TEST(MeshIo, StlIsBinaryAndReadsBackAsTheSameOrientedMesh) {
+    const fs::path dir = test::scratch_dir("io_stl");
+    SurfaceMesh mesh = test::octahedron();
+    for (Vertex v : mesh.vertices()) mesh.position(v) = 0.5 * mesh.position(v) + Vec3{1, 2, 3};  // float-exact
+    write_mesh(mesh, dir / "m.stl");
+    EXPECT_EQ(fs::file_size(dir / "m.stl"), 84u + 50u * mesh.n_faces());  // binary STL
+    const SurfaceMesh back = read_mesh(dir / "m.stl");
+    ASSERT_EQ(back.n_vertices(), mesh.n_vertices());
+    ASSERT_EQ(back.n_faces(), mesh.n_faces());
+    // Each face of the input is a face of the output with the same orientation.
+    const auto faces = [](const SurfaceMesh& m) {
+        std::set<std::array<std::array<double, 3>, 3>> out;
+        for (Face f : m.faces()) {
+            std::array<std::array<double, 3>, 3> t{};
+            std::size_t k = 0;
+            for (Vertex v : m.face_vertices(f)) t[k++] = {m.position(v).x, m.position(v).y, m.position(v).z};
+            std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+            out.insert(t);
+        }
+        return out;
+    };
+    EXPECT_EQ(faces(back), faces(mesh));
+}
+
 // ---- validation and atomicity -------------------------------------------------------------
 
 TEST(MeshIo, RejectsBadWriteRequests) {
     const fs::path dir = test::scratch_dir("io_bad_requests");
     const SurfaceMesh mesh = test::octahedron();
-    const std::string msg = test::io_error_of([&] { write_mesh(mesh, dir / "m.stl"); });
-    EXPECT_NE(msg.find("m.stl"), std::string::npos) << msg;
-    EXPECT_NE(msg.find(".off, .obj, .ply, .vtk, .vtp"), std::string::npos) << msg;
+    const std::string msg = test::io_error_of([&] { write_mesh(mesh, dir / "m.xyz"); });
+    EXPECT_NE(msg.find("m.xyz"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(".off, .obj, .ply, .stl, .vtk, .vtp"), std::string::npos) << msg;
+    WriteOptions lines;
+    lines.polylines = {{0, 1}};
+    EXPECT_THROW(write_mesh(mesh, dir / "m.stl", lines), InvalidInput);
+    EXPECT_FALSE(fs::exists(dir / "m.stl"));
 
     const auto with_vertex_field = [&](ScalarField f) {
         WriteOptions opt;

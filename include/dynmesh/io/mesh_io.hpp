@@ -108,8 +108,9 @@ struct WriteOptions {
 };
 
 /// Writes the live elements of `mesh`, choosing the format by extension (case-insensitive):
-/// `.off`, `.obj`, `.ply`, `.vtk` (legacy ASCII POLYDATA) or `.vtp` (VTK XML PolyData with
-/// ascii DataArrays). Vertices are renumbered 0..n-1 in index order, skipping deleted ones
+/// `.off`, `.obj`, `.ply`, `.stl` (binary; float32 corners, no shared vertices, no fields:
+/// vertex and face fields are not written, polylines are refused), `.vtk` (legacy ASCII
+/// POLYDATA) or `.vtp` (VTK XML PolyData with ascii DataArrays). Vertices are renumbered 0..n-1 in index order, skipping deleted ones
 /// (the numbering garbage_collection() would give); faces follow in index order as
 /// `mesh.to_soup()` lists them. Coordinates are written in shortest round-trip form (text)
 /// or as doubles (binary PLY), so reading the file back reproduces them bit for bit.
@@ -130,7 +131,7 @@ void write_mesh(const SurfaceMesh& mesh, const std::filesystem::path& path,
 void write_soup(const TriangleSoup& soup, const std::filesystem::path& path,
                 const WriteOptions& options = {});
 
-/// The extensions write_mesh() understands: .off .obj .ply .vtk .vtp
+/// The extensions write_mesh() understands: .off .obj .ply .stl .vtk .vtp
 [[nodiscard]] std::vector<std::string> writable_mesh_extensions();
 
 /// Writes a ParaView collection (.pvd) listing one dataset per time step, in the given
