@@ -13,7 +13,7 @@ namespace {
 void expect_valid_closed(const SurfaceMesh& m, long long euler, const std::string& ctx) {
     const auto r = check_mesh(m, {.require_closed = true});
     EXPECT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
-    EXPECT_EQ(r.euler, euler) << ctx;
+    EXPECT_EQ(r.integer("euler"), euler) << ctx;
 }
 
 TEST(SurfaceMesh, BuildsClosedMeshes) {
@@ -31,8 +31,8 @@ TEST(SurfaceMesh, OpenGridHasBoundary) {
     const SurfaceMesh g = test::grid(3);
     const auto r = check_mesh(g);
     EXPECT_TRUE(r.ok()) << r.summary();
-    EXPECT_FALSE(r.closed);
-    EXPECT_EQ(r.boundary_edges, 12u);
+    EXPECT_FALSE(r.flag("closed"));
+    EXPECT_EQ(r.integer("boundary_edges"), 12);
     EXPECT_FALSE(check_mesh(g, {.require_closed = true}).ok());
 }
 
@@ -110,7 +110,7 @@ TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
             }
             const auto r = check_mesh(m, {.require_closed = true, .check_degenerate = false});
             ASSERT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
-            ASSERT_EQ(r.euler, 2) << ctx;
+            ASSERT_EQ(r.integer("euler"), 2) << ctx;
             if (step % 50 == 49) {
                 m.garbage_collection();
                 const auto r2 = check_mesh(m, {.require_closed = true, .check_degenerate = false});
@@ -140,8 +140,8 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
     {
         const auto r = check_mesh(m, {.require_closed = true});
         ASSERT_TRUE(r.ok()) << r.summary("  ");
-        EXPECT_EQ(r.components, 2u);
-        EXPECT_EQ(r.euler, 4);
+        EXPECT_EQ(r.integer("components"), 2);
+        EXPECT_EQ(r.integer("euler"), 4);
     }
     Vertex pole = *m.vertices().begin();
     for (std::uint32_t i = 0; i < n; ++i)
@@ -175,8 +175,8 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
     {
         const auto r = check_mesh(m, {.require_closed = true});
         ASSERT_TRUE(r.ok()) << r.summary("  ");
-        EXPECT_EQ(r.components, 1u);
-        EXPECT_EQ(r.euler, 2);
+        EXPECT_EQ(r.integer("components"), 1);
+        EXPECT_EQ(r.integer("euler"), 2);
     }
     // An unused vertex can go on its own; one in use cannot.
     const Vertex lone = m.add_vertex({9, 9, 9});
@@ -222,7 +222,7 @@ TEST(SurfaceMesh, SplitEdgeOnBoundary) {
         }
     const auto r = check_mesh(g);
     EXPECT_TRUE(r.ok()) << r.summary();
-    EXPECT_EQ(r.euler, 1);
+    EXPECT_EQ(r.integer("euler"), 1);
 }
 
 TEST(SurfaceMesh, RemoveVertexWithGivenTriangulation) {
