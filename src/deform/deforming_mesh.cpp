@@ -827,6 +827,8 @@ struct DeformingMesh::Impl {
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
         touch();
+        // A caller's mesh may carry the property already (e.g. another DeformingMesh's mesh).
+        if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
