@@ -139,6 +139,22 @@ void Progress::loop() {
     }
 }
 
+nlohmann::json check_json(const CheckReport& report, const CheckJsonKeys& keys) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const CheckFigure& f : report.figures) {
+        if (std::find(keys.leave_out.begin(), keys.leave_out.end(), f.name) != keys.leave_out.end()) continue;
+        switch (f.kind) {
+            case CheckFigure::Kind::Integer: j[f.name] = static_cast<long long>(f.value); break;
+            case CheckFigure::Kind::Boolean: j[f.name] = f.value != 0; break;
+            case CheckFigure::Kind::Real: j[f.name] = f.value; break;
+        }
+    }
+    if (keys.ok) j["ok"] = report.ok();
+    if (keys.problems) j["problems"] = report.problems;
+    if (keys.n_problems) j["n_problems"] = report.n_problems;
+    return j;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -148,15 +164,15 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 SurfaceMesh load_mesh(const fs::path& path) { return read_mesh(path); }
 
 void require_closed_manifold(const SurfaceMesh& mesh, const fs::path& path) {
-    const MeshCheckReport r = check_mesh(mesh, {.require_closed = true, .check_degenerate = false});
+    const CheckReport r = check_mesh(mesh, {.require_closed = true, .check_degenerate = false});
     if (!r.ok())
         throw TopologyError(path.string() + ": not a closed oriented 2-manifold: " + r.problems.front() +
                             (r.n_problems > 1 ? " (and " + std::to_string(r.n_problems - 1) + " more problems)" : ""));
-    const MeshCheckReport d = check_mesh(mesh, {.check_degenerate = true, .max_listed = 1});
-    if (d.degenerate_faces > 0)
+    const CheckReport d = check_mesh(mesh, {.check_degenerate = true, .max_listed = 1});
+    if (d.integer("degenerate_faces") > 0)
         throw TopologyError(path.string() + ": " + d.problems.front() +
-                            (d.degenerate_faces > 1
-                                 ? " (and " + std::to_string(d.degenerate_faces - 1) + " more)"
+                            (d.integer("degenerate_faces") > 1
+                                 ? " (and " + std::to_string(d.integer("degenerate_faces") - 1) + " more)"
                                  : "") +
                             "; zero-area triangles are refused: remove them first");
 }
@@ -179,7 +195,7 @@ void require_writable_mesh_extension(const std::string& path) {
 }
 
 void require_valid_output(const SurfaceMesh& mesh, const std::string& command, bool closed) {
-    const MeshCheckReport c = check_mesh(mesh, {.require_closed = closed});
+    const CheckReport c = check_mesh(mesh, {.require_closed = closed});
     if (!c.ok()) throw InternalError(command + " produced an invalid mesh: " + c.problems.front());
 }
 

@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/io/output_set.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
@@ -128,6 +129,19 @@ private:
     std::atomic<bool> stop_{false};
     std::thread thread_;
 };
+
+/// Which keys besides the figures check_json() writes, as each report has them.
+struct CheckJsonKeys {
+    bool ok = false;          ///< "ok": CheckReport::ok()
+    bool problems = false;    ///< "problems": the listed problems
+    bool n_problems = false;  ///< "n_problems": all problems, listed or not
+    /// Figures the report does not carry (measured by the library, never written by the CLI).
+    std::vector<std::string> leave_out;
+};
+
+/// A check's figures as a JSON object, one key per figure: Integer figures as integers,
+/// Boolean ones as true/false, Real ones as numbers; then the keys `keys` asks for.
+[[nodiscard]] nlohmann::json check_json(const CheckReport& report, const CheckJsonKeys& keys = {});
 
 /// Seconds since `t0`.
 double seconds_since(std::chrono::steady_clock::time_point t0);

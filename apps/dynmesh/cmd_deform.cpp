@@ -209,10 +209,10 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     const DeformRunReport r = run_deform(s, ro);
 
     nlohmann::json j = report_json(r, s);
-    const std::vector<std::string> failures = check_failures(r, check);
+    const CheckReport failures = check_failures(r, check);
     if (check != CheckLevel::Off) {
         j["check_level"] = std::string(to_string(check));
-        j["check_failures"] = failures;
+        j["check_failures"] = failures.problems;
     }
     if (!out_dir.empty()) {
         progress.stage("writing the log");
@@ -251,11 +251,11 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
                     r.worst_normal_dev_deg, r.self_intersections, r.inverted);
         for (const auto& [k, n] : r.violations) std::printf("monitor %s: %zu\n", k.c_str(), n);
         if (!a.out.empty()) std::printf("wrote %s/{mesh.pvd,log.csv,summary.json}\n", a.out.c_str());
-        for (const std::string& f : failures) std::printf("check (%s): %s\n", a.check.c_str(), f.c_str());
+        for (const std::string& f : failures.problems) std::printf("check (%s): %s\n", a.check.c_str(), f.c_str());
     }
-    if (!failures.empty())
-        throw CheckFailed(std::to_string(failures.size()) + " problem(s) at --check=" +
-                          std::string(to_string(check)) + "; first: " + failures.front());
+    if (!failures.ok())
+        throw CheckFailed(std::to_string(failures.n_problems) + " problem(s) at --check=" +
+                          std::string(to_string(check)) + "; first: " + failures.problems.front());
 }
 
 }  // namespace

@@ -107,7 +107,7 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
     bool check_ok = true;
     if (a.check) {
         progress.stage("checking");
-        const MeshCheckReport c = check_mesh(mesh, {.require_closed = true});
+        const CheckReport c = check_mesh(mesh, {.require_closed = true});
         const FlipDiagnostics d = flip_diagnostics(mesh, rule);
         // Global mode: a second pass with the same options must flip nothing. Local mode: no
         // edge at a given vertex may be flippable (farther edges may be, by design).
@@ -129,19 +129,11 @@ void run_flip(const FlipArgs& a, RunContext& ctx) {
                         {a.vertices_file.empty() ? "second_pass_flips" : "flippable_at_given_vertices", second}};
         if (before) {
             // The digest's local-mode check: F repaired, everything beyond m + 1 hops untouched.
-            const LocalFlipCheck lc = check_local_flip(
+            const CheckReport lc = check_local_flip(
                 *before, mesh, V, lr, {.rule = rule, .feature_angle_deg = a.feature_angle_deg});
             check_ok = check_ok && lc.ok();
             problems.insert(problems.end(), lc.problems.begin(), lc.problems.end());
-            rep["check"]["local_check"] = {{"near_faces", lc.near_faces},
-                                           {"flippable_edges", lc.flippable_edges},
-                                           {"illegal_edges", lc.illegal_edges},
-                                           {"nonempty_balls", lc.nonempty_balls},
-                                           {"unchecked_balls", lc.unchecked_balls},
-                                           {"far_faces", lc.far_faces},
-                                           {"far_faces_changed", lc.far_faces_changed},
-                                           {"moved_vertices", lc.moved_vertices},
-                                           {"problems", lc.problems}};
+            rep["check"]["local_check"] = check_json(lc, {.problems = true});
         }
         rep["check"]["ok"] = check_ok;
         rep["check"]["problems"] = problems;

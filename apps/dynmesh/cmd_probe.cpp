@@ -233,13 +233,13 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
     const ProbingResult r = a.dim == 3 ? probe_surface(object, o) : probe_curve(object, o);
 
     progress.stage("checking");
-    const ProbingCheckReport chk = check_probing(r, object, o, a.dim);
+    const CheckReport chk = check_probing(r, object, o, a.dim);
     // Without --check a broken topology still fails the run (every exit-0 output is a closed
     // manifold); with it, every check counts.
     std::vector<std::string> problems;
     if (a.check) {
         problems = chk.problems;
-    } else if (!chk.closed_manifold) {
+    } else if (!chk.flag("closed_manifold")) {
         problems.push_back("the output is not a closed manifold (run with --check for the details)");
     }
 
@@ -294,14 +294,9 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
                           {"reinitialisations", p.reinitialisations},
                           {"vertices", p.vertices},
                           {"facets", p.facets},
-                          {"euler", chk.euler},
-                          {"components", chk.components},
-                          {"max_ball_radius", p.max_ball_radius},
-                          {"hausdorff", chk.hausdorff},
-                          {"hausdorff_bound", chk.hausdorff_bound},
-                          {"sample_gap", chk.sample_gap},
                           {"seconds", p.seconds}};
-    if (!chk.closed_manifold) rep["hausdorff"] = nullptr;  // measured only on a closed manifold
+    rep.update(check_json(chk, {.leave_out = {"closed_manifold"}}));
+    if (!chk.flag("closed_manifold")) rep["hausdorff"] = nullptr;  // measured only on a closed manifold
     if (o.delta) rep["delta"] = *o.delta;
     for (const Point3& q : o.interior_points) rep["interior_points"].push_back({q.x, q.y, q.z});
     if (a.check) rep["check"] = {{"problems", problems}, {"segments_checked", p.segments_checked}};
@@ -315,13 +310,13 @@ void run_probe(const ProbeArgs& a, RunContext& ctx) {
             return os.str();
         };
         std::cout << "probe: " << p.vertices << " vertices, " << p.facets << (a.dim == 3 ? " facets" : " edges")
-                  << ", Euler " << chk.euler << ", Hausdorff "
-                  << (chk.closed_manifold ? short_number(chk.hausdorff) : std::string("n/a")) << " (bound "
-                  << short_number(chk.hausdorff_bound) << "); " << p.probes << " probes, "
+                  << ", Euler " << chk.integer("euler") << ", Hausdorff "
+                  << (chk.flag("closed_manifold") ? short_number(chk.figure("hausdorff")) : std::string("n/a"))
+                  << " (bound " << short_number(chk.figure("hausdorff_bound")) << "); " << p.probes << " probes, "
                   << p.voronoi_edges_travelled << " Voronoi edges travelled, path " << std::fixed << std::setprecision(1) << p.path_length << std::defaultfloat
                   << ", " << short_number(p.seconds) << " s\n  wrote " << a.output << "\n";
         for (const std::string& s : problems) std::cout << "  check: " << s << "\n";
-        if (!a.check && chk.closed_manifold && chk.hausdorff > chk.hausdorff_bound)
+        if (!a.check && chk.flag("closed_manifold") && chk.figure("hausdorff") > chk.figure("hausdorff_bound"))
             std::cerr << "dynmesh probe: warning: the Hausdorff distance exceeds the bound: eps_S is not a lower "
                          "bound of the reach, or a component cannot be reached from outside Omega (run with "
                          "--check)\n";

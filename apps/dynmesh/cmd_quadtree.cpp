@@ -220,7 +220,7 @@ MeshResult describe_mesh(QuadMesh2 mesh, const std::optional<OffCenterMesh2>& oc
     }
     if (a.check) {
         if (oc) {
-            r.problems = check_offcenter_mesh(*oc);
+            r.problems = check_offcenter_mesh(*oc).problems;
             if (angles.min < promised)
                 r.problems.push_back("smallest angle " + fmt_double(angles.min) +
                                      " below the promised " + fmt_double(promised) +
@@ -228,7 +228,7 @@ MeshResult describe_mesh(QuadMesh2 mesh, const std::optional<OffCenterMesh2>& oc
                                      fmt_double(offcenter_min_angle_deg(a.rho)) +
                                      " less the rounding slack of the shortest edge)");
         } else {
-            r.problems = check_quad_mesh(mesh);
+            r.problems = check_quad_mesh(mesh).problems;
             if (angles.min < kQuadMeshMinAngleDeg - 1e-6 || angles.max > kQuadMeshMaxAngleDeg + 1e-6)
                 r.problems.push_back("angles outside [" + std::to_string(kQuadMeshMinAngleDeg) +
                                      ", " + std::to_string(kQuadMeshMaxAngleDeg) + "] degrees");
@@ -248,7 +248,7 @@ MeshResult describe_mesh(OctMesh3 mesh, const std::optional<OffCenterMesh2>& /*o
     r.extra["max_dihedral_deg"] = d.max;
     r.extra["mesher"] = "octree";
     if (a.check) {
-        r.problems = check_oct_mesh(mesh);
+        r.problems = check_oct_mesh(mesh).problems;
         if (d.min < kOctMeshMinDihedralDeg || d.max > kOctMeshMaxDihedralDeg)
             r.problems.push_back("dihedral angles [" + std::to_string(d.min) + ", " +
                                  std::to_string(d.max) + "] outside [" +
@@ -425,7 +425,7 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
                                 {"cells_split", tree.last_update().split.size()},
                                 {"cells_merged", tree.last_update().merged.size()}};
         if (dyn) {
-            const MeshUpdateReport<D>& u = dyn->last_update();
+            const QuadMeshUpdateReport<D>& u = dyn->last_update();
             entry["leaves_examined"] = u.leaves_examined;
             entry["simplices_removed"] = u.simplices_removed;
             entry["simplices_added"] = u.simplices_added;
@@ -435,8 +435,8 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
                 const OffCenterUpdateReport& u = off->last_update();
                 entry["steiner_added"] = u.steiner_added;
                 entry["steiner_removed"] = u.steiner_removed;
-                entry["simplices_removed"] = u.triangles_removed;
-                entry["simplices_added"] = u.triangles_added;
+                entry["simplices_removed"] = u.simplices_removed;
+                entry["simplices_added"] = u.simplices_added;
                 entry["evaluations"] = u.evaluations;
             }
         // The change of the maintained mesh (MeshDelta: what a caller mirroring it applies).

@@ -117,14 +117,14 @@ void run_check(const CheckArgs& a, RunContext& ctx) {
         throw CheckFailed(a.mesh + ": not an oriented 2-manifold: " + why);
     }
     progress.stage("checking");
-    const MeshCheckReport r = check_mesh(mesh, {.require_closed = a.closed});
-    nlohmann::json rep = {{"command", "check"},      {"mesh", a.mesh},
-                          {"ok", r.ok()},            {"problems", r.problems},
-                          {"n_problems", r.n_problems}, {"vertices", r.vertices},
-                          {"edges", r.edges},        {"faces", r.faces},
-                          {"euler", r.euler},        {"closed", r.closed},
-                          {"components", r.components}, {"boundary_edges", r.boundary_edges},
-                          {"degenerate_faces", r.degenerate_faces}};
+    const CheckReport r = check_mesh(mesh, {.require_closed = a.closed});
+    nlohmann::json rep = check_json(r, {.ok = true,
+                                        .problems = true,
+                                        .n_problems = true,
+                                        .leave_out = {"isolated_vertices", "non_manifold_vertices",
+                                                      "duplicate_edges"}});
+    rep["command"] = "check";
+    rep["mesh"] = a.mesh;
     std::size_t si = 0;
     if (a.self_intersections) {
         progress.stage("self-intersection test");
@@ -133,9 +133,11 @@ void run_check(const CheckArgs& a, RunContext& ctx) {
     }
     out.report(rep);
     out.commit();
-    std::cout << a.mesh << ": " << r.vertices << " V, " << r.edges << " E, " << r.faces
-              << " F, Euler " << r.euler << ", " << r.components << " component(s), "
-              << (r.closed ? "closed" : std::to_string(r.boundary_edges) + " boundary edges") << "\n";
+    std::cout << a.mesh << ": " << r.integer("vertices") << " V, " << r.integer("edges") << " E, "
+              << r.integer("faces") << " F, Euler " << r.integer("euler") << ", " << r.integer("components")
+              << " component(s), "
+              << (r.flag("closed") ? "closed" : std::to_string(r.integer("boundary_edges")) + " boundary edges")
+              << "\n";
     std::cout << r.summary("  problem: ");
     if (a.self_intersections) std::cout << "  self-intersecting face pairs: " << si << "\n";
     if (!r.ok() || si > 0)

@@ -58,7 +58,7 @@ Fixture& fixture(std::size_t n, bool sorted = false) {
     const Sphere sphere(Point3{0, 0, 0}, 1.0);
     f.p0 = sphere.sample_uniform(n, 1);
     if (sorted) spatial_sort(f.p0);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = f.motion.lambda * 1.001;
     params.h0_probes = std::max<std::size_t>(n, 100000);
     const auto t0 = Clock::now();
@@ -88,7 +88,7 @@ void update_bench(benchmark::State& state, bool sorted) {
         const auto start = Clock::now();
         f.dm->advance(t, f.pos);
         const auto mid = Clock::now();
-        const UpdateReport u = f.dm->update();
+        const DeformUpdateReport u = f.dm->update();
         const auto end = Clock::now();
         state.SetIterationTime(std::chrono::duration<double>(end - start).count());
         advance_s += std::chrono::duration<double>(mid - start).count();

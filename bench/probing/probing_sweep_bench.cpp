@@ -96,10 +96,10 @@ void BM_Sweep(benchmark::State& state) {
     ProbingResult r;
     double seconds = 0;
     for (auto _ : state) r = timed_probe(*set.object, o, seconds);
-    const ProbingCheckReport c = check_probing(r, *set.object, o, 3);
-    if (!c.closed_manifold || c.euler != set.object->euler_characteristic())
+    const CheckReport c = check_probing(r, *set.object, o, 3);
+    if (!c.flag("closed_manifold") || c.integer("euler") != set.object->euler_characteristic())
         state.SkipWithError("the output does not have the object's topology");
-    Row row{surfaces()[s].name, o.eps, o.eps < 0.091 * o.eps_S, r.report, c.hausdorff, c.hausdorff_bound, seconds};
+    Row row{surfaces()[s].name, o.eps, o.eps < 0.091 * o.eps_S, r.report, c.figure("hausdorff"), c.figure("hausdorff_bound"), seconds};
     rows().push_back(row);
     const double n = double(r.report.vertices);
     state.counters["N"] = n;

@@ -138,7 +138,7 @@ void BM_OffCenter(benchmark::State& state, bool use_offcenters) {
         benchmark::DoNotOptimize(mesh.triangles.data());
     }
     set_counters(state, mesh.points.size(), mesh.min_angle_deg);
-    state.counters["valid"] = check_offcenter_mesh(mesh).empty() ? 1 : 0;
+    state.counters["valid"] = check_offcenter_mesh(mesh).ok() ? 1 : 0;
 }
 void BM_OffCenterHPU(benchmark::State& s) { BM_OffCenter(s, true); }
 void BM_CircumcentreOnly(benchmark::State& s) { BM_OffCenter(s, false); }

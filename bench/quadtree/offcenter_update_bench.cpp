@@ -113,8 +113,8 @@ void BM_DynUpdate(benchmark::State& state) {
         checksum += bench::read_delta<2>(f.dyn->current_mesh(), f.dyn->last_change());
         const OffCenterUpdateReport& b = f.dyn->last_update();
         updates += 2;
-        triangles += a.triangles_added + a.triangles_removed + b.triangles_added +
-                     b.triangles_removed;
+        triangles += a.simplices_added + a.simplices_removed + b.simplices_added +
+                     b.simplices_removed;
         changed += a.steiner_added + a.steiner_removed + b.steiner_added + b.steiner_removed;
         evaluations += a.evaluations + b.evaluations;
         rounds += a.rounds_visited + b.rounds_visited;

@@ -511,16 +511,16 @@ const Measures& measured(std::size_t k, int nsub) {
         const SurfaceMesh mesh = SurfaceMesh::from_soup(soup);
         SkinMeshCheckOptions co;
         co.rho_floor = c.rho_floor;
-        const SkinMeshCheck chk = check_skin_mesh(*c.phi, mesh, co);
-        m.euler = double(chk.euler);
-        m.expected_euler = double(chk.expected_euler);
-        m.components = double(chk.components);
-        m.expected_components = double(chk.expected_components);
-        m.h_mesh_skin = chk.hausdorff_over_rho_max;
-        m.h_mesh_skin_abs = chk.hausdorff_max;
-        m.normal_dev_max = chk.normal_dev_max_deg;
-        m.normal_dev_mean = chk.normal_dev_mean_deg;
-        m.vertex_offset = chk.vertex_offset_max;
+        const CheckReport chk = check_skin_mesh(*c.phi, mesh, co);
+        m.euler = double(chk.integer("euler"));
+        m.expected_euler = double(chk.integer("expected_euler"));
+        m.components = double(chk.integer("components"));
+        m.expected_components = double(chk.integer("expected_components"));
+        m.h_mesh_skin = chk.figure("hausdorff_over_rho_max");
+        m.h_mesh_skin_abs = chk.figure("hausdorff_max");
+        m.normal_dev_max = chk.figure("normal_dev_max_deg");
+        m.normal_dev_mean = chk.figure("normal_dev_mean_deg");
+        m.vertex_offset = chk.figure("vertex_offset_max");
         m.problems = double(chk.problems.size());
         for (const std::string& p : chk.problems)
             std::fprintf(stderr, "  [%s %s] %s\n", cases()[k].name, run_tag(k, nsub).c_str(),

@@ -102,7 +102,7 @@ double largest_circumradius(const SurfaceMesh& m) {
 /// canonicalize() numbers in slot order) visit the surface in a spatially coherent order.
 /// ext[slot] is the caller's SampleId; every message and accessor translates.
 struct DeformingMesh::Impl {
-    DeformParams params;
+    DeformOptions params;
     InitReport init;
     std::vector<SampleId> ext;         ///< slot -> SampleId
     std::vector<std::uint32_t> slot_of;  ///< SampleId -> slot
@@ -690,12 +690,12 @@ struct DeformingMesh::Impl {
         MeshCheckOptions co;
         co.require_closed = true;
         co.check_degenerate = false;
-        const MeshCheckReport mc = check_mesh(af.mesh, co);
-        if (!mc.ok() || mc.euler != euler || mc.components != components) {
+        const CheckReport mc = check_mesh(af.mesh, co);
+        if (!mc.ok() || mc.integer("euler") != euler || static_cast<std::size_t>(mc.integer("components")) != components) {
             ++cur.rollbacks;
             violation(Violation::TopologyRollback,
                       what + " is undone: it gives " + (mc.ok() ? "" : "a mesh with problems, ") +
-                          "Euler characteristic " + std::to_string(mc.euler) + " and " + std::to_string(mc.components) +
+                          "Euler characteristic " + std::to_string(mc.integer("euler")) + " and " + std::to_string(mc.integer("components")) +
                           " components instead of " + std::to_string(euler) + " and " + std::to_string(components) +
                           "; the mesh is kept");
             return;
@@ -827,6 +827,8 @@ struct DeformingMesh::Impl {
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
         touch();
+        // A caller's mesh may carry the property already (e.g. another DeformingMesh's mesh).
+        if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
@@ -883,7 +885,7 @@ DeformingMesh::~DeformingMesh() = default;
 DeformingMesh::DeformingMesh(DeformingMesh&&) noexcept = default;
 DeformingMesh& DeformingMesh::operator=(DeformingMesh&&) noexcept = default;
 
-DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformParams& params,
+DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformOptions& params,
                              const InitialSurface& initial)
     : impl_(std::make_unique<Impl>()) {
     const auto t0 = Clock::now();
@@ -940,8 +942,8 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformPara
         if (!rep.ok())
             throw InvalidInput("deform: the initial mesh is not a closed manifold (the sample set may be too sparse):\n" +
                                rep.summary("  "));
-        I.euler = rep.euler;
-        I.components = rep.components;
+        I.euler = rep.integer("euler");
+        I.components = static_cast<std::size_t>(rep.integer("components"));
     }
     I.global_flip();
     I.canonicalize();
@@ -1056,11 +1058,11 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     return rep;
 }
 
-UpdateReport DeformingMesh::update() {
+DeformUpdateReport DeformingMesh::update() {
     Impl& I = *impl_;
     I.pending_violations.clear();
     const auto t0 = Clock::now();
-    UpdateReport rep;
+    DeformUpdateReport rep;
     rep.t = I.t;
     rep.emergency = I.emergency_requested;
     I.cur = {};
@@ -1122,7 +1124,7 @@ void DeformingMesh::queue_deletion(SampleId id) {
 int DeformingMesh::time() const { return impl_->t; }
 int DeformingMesh::next_step() const { return impl_->next; }
 double DeformingMesh::lambda() const { return impl_->params.lambda; }
-const DeformParams& DeformingMesh::params() const { return impl_->params; }
+const DeformOptions& DeformingMesh::params() const { return impl_->params; }
 const SurfaceMesh& DeformingMesh::mesh() const { return impl_->mesh; }
 SampleId DeformingMesh::sample_of(Vertex v) const {
     if (!v.is_valid() || v.idx() >= impl_->mesh.vertices_size()) return kNoSample;
@@ -1162,10 +1164,10 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
     };
     const auto mc = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
     if (!mc.ok()) fail("mesh: " + mc.summary());
-    if (mc.euler != I.euler)
-        fail("Euler characteristic " + std::to_string(mc.euler) + " != " + std::to_string(I.euler) + " at t = 0");
-    if (mc.components != I.components)
-        fail(std::to_string(mc.components) + " components != " + std::to_string(I.components) + " at t = 0");
+    if (mc.integer("euler") != I.euler)
+        fail("Euler characteristic " + std::to_string(mc.integer("euler")) + " != " + std::to_string(I.euler) + " at t = 0");
+    if (static_cast<std::size_t>(mc.integer("components")) != I.components)
+        fail(std::to_string(mc.integer("components")) + " components != " + std::to_string(I.components) + " at t = 0");
     r.vertices = I.mesh.n_vertices();
     r.R = I.max_circumradius();
     const double R = r.R;

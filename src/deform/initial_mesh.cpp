@@ -90,6 +90,7 @@ void refine_to_fixed_point(std::span<const Point3> samples, const SurfaceMesh& r
 ReferenceMesh decimate_reference(std::span<const Point3> samples, std::span<const std::uint32_t> net,
                                  const SurfaceMesh& reference) {
     SurfaceMesh m = reference;
+    if (auto old = m.get_vertex_property<std::uint32_t>("v:initial_sample"); old.is_valid()) m.remove_property(old);
     auto sample_of = m.add_vertex_property<std::uint32_t>("v:initial_sample", kNone);
     {   // reference vertex -> sample, by exact coordinates
         std::map<std::array<double, 3>, std::uint32_t> index;

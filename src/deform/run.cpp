@@ -48,7 +48,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     const int T = options.stop_after > 0 ? std::min(options.stop_after, horizon) : horizon;  // last unit run
     rep.time_units = T;
 
-    DeformParams params = options.params;
+    DeformOptions params = options.params;
     params.lambda = s.lambda;
     params.h0 = s.h0;
     params.horizon = horizon;
@@ -178,7 +178,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                     sample_of_pool[q] = kNoSample;
                 }
             }
-            const UpdateReport u = dm.update();
+            const DeformUpdateReport u = dm.update();
             c = u.counters;
             emergency = u.emergency;
             nviol += u.violations.size();
@@ -243,9 +243,9 @@ CheckLevel parse_check_level(std::string_view name) {
     throw InvalidInput("unknown check level '" + std::string(name) + "' (expected off, invariants or strict)");
 }
 
-std::vector<std::string> check_failures(const DeformRunReport& r, CheckLevel level) {
+CheckReport check_failures(const DeformRunReport& r, CheckLevel level) {
     std::vector<std::string> out;
-    if (level == CheckLevel::Off) return out;
+    if (level == CheckLevel::Off) return {};
     if (r.invariant_failures > 0) {
         out.push_back(std::to_string(r.invariant_failures) + " updates failed the invariant checks");
         for (const std::string& f : r.first_invariant_failures) out.push_back(f);
@@ -278,7 +278,7 @@ std::vector<std::string> check_failures(const DeformRunReport& r, CheckLevel lev
         records([](Violation) { return true; });
     else
         records([](Violation k) { return k == Violation::TopologyRollback; });
-    return out;
+    return CheckReport::of_problems(std::move(out));
 }
 
 std::string log_csv(const DeformRunReport& report) {

@@ -714,12 +714,12 @@ Scenario analytic_scenario(const std::string& name, const ScenarioOptions& o, do
     MeshCheckOptions co;
     co.require_closed = true;
     co.check_degenerate = false;
-    const MeshCheckReport rep = check_mesh(s.reference, co);
-    if (!rep.ok() || rep.euler != expected_euler || rep.components != 1)
+    const CheckReport rep = check_mesh(s.reference, co);
+    if (!rep.ok() || rep.integer("euler") != expected_euler || rep.integer("components") != 1)
         throw InvalidInput("make_scenario: '" + name + "': a pool of " + std::to_string(m) +
                            " points is too sparse to mesh " + shape +
                            " (restricted Delaunay triangulation: Euler characteristic " +
-                           std::to_string(rep.euler) + ", expected " +
+                           std::to_string(rep.integer("euler")) + ", expected " +
                            std::to_string(expected_euler) + "); use more samples");
     // Pool points the RDT left out are dropped; P(0) = the first `samples` candidates kept.
     const std::vector<std::uint32_t>& vs = rdt.report.vertex_sample;
@@ -749,11 +749,11 @@ Scenario mesh_scenario(const std::string& path, const ScenarioOptions& o, double
     MeshCheckOptions co;
     co.require_closed = true;
     co.check_degenerate = false;
-    const MeshCheckReport rep = check_mesh(mesh, co);
+    const CheckReport rep = check_mesh(mesh, co);
     if (!rep.ok())
         throw InvalidInput("make_scenario: mesh file '" + path +
                            "' is not a closed oriented 2-manifold (" +
-                           std::to_string(rep.boundary_edges) + " boundary edges, " +
+                           std::to_string(rep.integer("boundary_edges")) + " boundary edges, " +
                            std::to_string(rep.n_problems) + " problems):\n" + rep.summary("  "));
 
     Scenario s;

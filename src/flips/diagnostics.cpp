@@ -74,7 +74,18 @@ FlipDiagnostics flip_diagnostics(const SurfaceMesh& m, FlipRule rule, double shr
     return d;
 }
 
-LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after, std::span<const Vertex> V,
+namespace {
+
+/// What check_local_flip() counts, before it becomes the report's figures.
+struct LocalFlipCounts {
+    std::size_t near_faces = 0, flippable_edges = 0, illegal_edges = 0, nonempty_balls = 0,
+                unchecked_balls = 0, far_faces = 0, far_faces_changed = 0, moved_vertices = 0;
+    std::vector<std::string> problems;
+};
+
+}  // namespace
+
+CheckReport check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after, std::span<const Vertex> V,
                                 const LocalFlipReport& report, const LocalFlipCheckOptions& options) {
     DYNMESH_CHECK(!before.has_garbage() && !after.has_garbage(), "check_local_flip: a mesh has deleted elements");
     DYNMESH_CHECK(before.vertices_size() == after.vertices_size() && before.edges_size() == after.edges_size() &&
@@ -82,7 +93,7 @@ LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& af
                   "check_local_flip: the two meshes differ in size (flips never add or remove elements)");
     for (Vertex v : V)
         DYNMESH_CHECK(after.is_valid(v), "check_local_flip: vertex " + std::to_string(v.idx()) + " is not in the mesh");
-    LocalFlipCheck out;
+    LocalFlipCounts out;
     auto problem = [&](std::size_t count, const std::string& what) {
         if (count) out.problems.push_back(std::to_string(count) + " " + what);
     };
@@ -130,7 +141,17 @@ LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& af
     problem(out.flippable_edges, "flippable edges in F (triangles within 1 hop of V)");
     problem(out.illegal_edges, "illegal edges in F");
     problem(out.nonempty_balls, "triangles of F whose shrunken diametric ball holds a vertex");
-    return out;
+    CheckReport rep;
+    for (std::string& p : out.problems) rep.fail(std::move(p));
+    rep.add("near_faces", out.near_faces);
+    rep.add("flippable_edges", out.flippable_edges);
+    rep.add("illegal_edges", out.illegal_edges);
+    rep.add("nonempty_balls", out.nonempty_balls);
+    rep.add("unchecked_balls", out.unchecked_balls);
+    rep.add("far_faces", out.far_faces);
+    rep.add("far_faces_changed", out.far_faces_changed);
+    rep.add("moved_vertices", out.moved_vertices);
+    return rep;
 }
 
 }  // namespace dynmesh

@@ -9,20 +9,42 @@
 
 namespace dynmesh {
 
-std::string MeshCheckReport::summary(const std::string& prefix) const {
-    std::string s;
-    for (const auto& p : problems) s += prefix + p + "\n";
-    if (n_problems > problems.size())
-        s += prefix + "... and " + std::to_string(n_problems - problems.size()) + " more\n";
-    return s;
+namespace {
+
+/// What check_mesh() counts, before it becomes the report's figures.
+struct MeshCounts {
+    std::size_t vertices = 0, edges = 0, faces = 0;
+    std::size_t boundary_edges = 0;
+    std::size_t isolated_vertices = 0;
+    std::size_t non_manifold_vertices = 0;
+    std::size_t duplicate_edges = 0;
+    std::size_t degenerate_faces = 0;
+    std::size_t components = 0;
+    long long euler = 0;
+    bool closed = false;
+};
+
+CheckReport with_figures(CheckReport out, const MeshCounts& r) {
+    out.add("vertices", r.vertices);
+    out.add("edges", r.edges);
+    out.add("faces", r.faces);
+    out.add("euler", r.euler);
+    out.add("closed", r.closed);
+    out.add("components", r.components);
+    out.add("boundary_edges", r.boundary_edges);
+    out.add("degenerate_faces", r.degenerate_faces);
+    out.add("isolated_vertices", r.isolated_vertices);
+    out.add("non_manifold_vertices", r.non_manifold_vertices);
+    out.add("duplicate_edges", r.duplicate_edges);
+    return out;
 }
 
-MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
-    MeshCheckReport r;
-    auto problem = [&](std::string msg) {
-        ++r.n_problems;
-        if (r.problems.size() < opt.max_listed) r.problems.push_back(std::move(msg));
-    };
+}  // namespace
+
+CheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
+    CheckReport out;
+    MeshCounts r;
+    auto problem = [&](std::string msg) { out.fail(std::move(msg), opt.max_listed); };
     r.vertices = m.n_vertices();
     r.edges = m.n_edges();
     r.faces = m.n_faces();
@@ -72,7 +94,7 @@ MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
     if (!structure_ok) {
         r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
                   static_cast<long long>(r.faces);
-        return r;
+        return with_figures(std::move(out), r);
     }
 
     // Edges: each in at least one triangle; two triangles on an edge differ in their apex.
@@ -157,12 +179,12 @@ MeshCheckReport check_mesh(const SurfaceMesh& m, const MeshCheckOptions& opt) {
     r.closed = r.boundary_edges == 0;
     r.euler = static_cast<long long>(r.vertices) - static_cast<long long>(r.edges) +
               static_cast<long long>(r.faces);
-    return r;
+    return with_figures(std::move(out), r);
 }
 
 void require_valid_mesh(const SurfaceMesh& mesh, const std::string& what,
                         const MeshCheckOptions& options) {
-    const MeshCheckReport r = check_mesh(mesh, options);
+    const CheckReport r = check_mesh(mesh, options);
     if (r.ok()) return;
     std::string first = r.problems.empty() ? std::string("invalid") : r.problems.front();
     throw TopologyError(what + ": " + first +

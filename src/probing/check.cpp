@@ -131,10 +131,23 @@ double default_check_spacing(const GroundTruth& truth, double eps, int dim) {
     return std::max(eps / 4, dim == 3 ? std::sqrt(truth.area() / 2e5) : truth.area() / 2e5);
 }
 
-ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& truth, const ProbingOptions& options,
-                                 int dim, const ProbingCheckOptions& check) {
+namespace {
+
+/// What check_probing() measures, before it becomes the report's figures.
+struct ProbingMeasures {
+    std::vector<std::string> problems;
+    bool closed_manifold = false;
+    long long euler = 0;
+    std::size_t components = 0;
+    double hausdorff = 0, hausdorff_bound = 0, sample_gap = 0, max_ball_radius = 0;
+};
+
+}  // namespace
+
+CheckReport check_probing(const ProbingResult& r, const GroundTruth& truth, const ProbingOptions& options,
+                          int dim, const ProbingCheckOptions& check) {
     DYNMESH_CHECK(dim == 2 || dim == 3, "check_probing: dim must be 2 or 3");
-    ProbingCheckReport out;
+    ProbingMeasures out;
     out.problems = r.problems;
     const double eps = r.report.eps > 0 ? r.report.eps : options.eps;
     const auto fail = [&](const std::string& what) { out.problems.push_back(what); };
@@ -143,10 +156,10 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
     if (dim == 3) {
         try {
             const SurfaceMesh m = SurfaceMesh::from_soup(r.mesh);
-            const MeshCheckReport mc = check_mesh(m, {.require_closed = true});
-            out.closed_manifold = mc.ok() && mc.faces > 0;
-            out.euler = mc.euler;
-            out.components = mc.components;
+            const CheckReport mc = check_mesh(m, {.require_closed = true});
+            out.closed_manifold = mc.ok() && mc.integer("faces") > 0;
+            out.euler = mc.integer("euler");
+            out.components = static_cast<std::size_t>(mc.integer("components"));
             if (!mc.ok()) fail("the output is not a closed oriented 2-manifold: " + mc.summary());
             // Outward: the enclosed volume (sum of signed tetrahedra from any origin) is positive.
             double volume = 0;
@@ -225,7 +238,16 @@ ProbingCheckReport check_probing(const ProbingResult& r, const GroundTruth& trut
     if (out.hausdorff > out.hausdorff_bound)
         fail("Hausdorff distance " + std::to_string(out.hausdorff) + " exceeds the bound 4.5 diam eps^2 / eps_S^2 = " +
              std::to_string(out.hausdorff_bound));
-    return out;
+    CheckReport rep;
+    for (std::string& p : out.problems) rep.fail(std::move(p));
+    rep.add("euler", out.euler);
+    rep.add("components", out.components);
+    rep.add("max_ball_radius", out.max_ball_radius);
+    rep.add("hausdorff", out.hausdorff);
+    rep.add("hausdorff_bound", out.hausdorff_bound);
+    rep.add("sample_gap", out.sample_gap);
+    rep.add("closed_manifold", out.closed_manifold);
+    return rep;
 }
 
 }  // namespace dynmesh

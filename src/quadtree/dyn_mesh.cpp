@@ -227,7 +227,7 @@ EraseResult DynQuadMesh<D>::erase(const Point& p) {
 
 template <int D>
 void DynQuadMesh<D>::refresh(const typename DynQuadtree<D>::GridPoint& g) {
-    MeshUpdateReport<D> rep;
+    QuadMeshUpdateReport<D> rep;
     rep.tree = tree_.last_update();
     delta_.clear();
     const auto drop = [&](const CellId<D>& c) {

@@ -1284,8 +1284,8 @@ struct DynOffCenterMesh2::Impl {
         }
         update_cells();
         live.recycle();
-        report.triangles_added = change.added_simplices.size();
-        report.triangles_removed = change.removed_simplices.size();
+        report.simplices_added = change.added_simplices.size();
+        report.simplices_removed = change.removed_simplices.size();
         report.rounds_visited = visited_rounds.size();
         for (std::uint32_t id : dead_verts) {
             verts[id].cands.clear();
@@ -1482,8 +1482,8 @@ DynOffCenterMesh2::DynOffCenterMesh2(std::unique_ptr<Impl> impl) : impl_(std::mo
 
 DynOffCenterMesh2::DynOffCenterMesh2(const QuadtreeOptions<2>& domain,
                                      const OffCenterOptions& options) {
-    detail::check_rho(options, "DynOffCenterMesh2");
-    detail::check_offcenter_domain(domain, "DynOffCenterMesh2");
+    detail::require_rho(options, "DynOffCenterMesh2");
+    detail::require_offcenter_domain(domain, "DynOffCenterMesh2");
     impl_ = std::make_unique<Impl>(domain, options);
     impl_->begin_update();
     impl_->init_box();
@@ -1500,8 +1500,8 @@ DynOffCenterMesh2& DynOffCenterMesh2::operator=(DynOffCenterMesh2&&) noexcept = 
 DynOffCenterMesh2 DynOffCenterMesh2::build(std::span<const Vec2> points,
                                            const QuadtreeOptions<2>& domain,
                                            const OffCenterOptions& options) {
-    detail::check_rho(options, "DynOffCenterMesh2");
-    detail::check_offcenter_domain(domain, "DynOffCenterMesh2");
+    detail::require_rho(options, "DynOffCenterMesh2");
+    detail::require_offcenter_domain(domain, "DynOffCenterMesh2");
     DynQuadtree<2> tree = DynQuadtree<2>::build(points, domain);  // validates, names bad points
     auto impl = std::make_unique<Impl>(domain, options);
     impl->tree = std::move(tree);

@@ -130,7 +130,7 @@ void leaf_simplices<3>(const CellId<3>& leaf, LeafCode code,
 
 OctMesh3 oct_mesh(const DynQuadtree<3>& tree) { return detail::mesh_of_tree<3>(tree); }
 
-std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
+CheckReport check_oct_mesh(const OctMesh3& mesh) {
     std::vector<std::string> bad;
     const auto n = mesh.points.size();
     std::vector<bool> used(n, false);
@@ -207,7 +207,7 @@ std::vector<std::string> check_oct_mesh(const OctMesh3& mesh) {
         i = j;
     }
     detail::append_vertex_problems<3>(mesh.points, used, bad);
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 DihedralRangeDeg dihedral_range_deg(const OctMesh3& mesh) {

@@ -428,13 +428,13 @@ double OffCenterKernel::slack(double len2) const {
     return 1e-12 + 64.0 * DBL_EPSILON * scale / std::sqrt(len2);
 }
 
-void check_rho(const OffCenterOptions& options, const char* who) {
+void require_rho(const OffCenterOptions& options, const char* who) {
     if (!std::isfinite(options.rho) || !(options.rho > std::sqrt(2.0)))
         throw InvalidInput(std::string(who) + ": rho = " + std::to_string(options.rho) +
                            " must be finite and > sqrt(2)");
 }
 
-void check_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who) {
+void require_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who) {
     const double w = domain.width;
     const double s = std::max({std::fabs(domain.origin.x), std::fabs(domain.origin.y),
                                std::fabs(domain.origin.x + w), std::fabs(domain.origin.y + w)});
@@ -595,8 +595,8 @@ double offcenter_min_angle_deg(double rho) {
 
 double offcenter_min_separation(const QuadtreeOptions<2>& domain,
                                 const OffCenterOptions& options) {
-    detail::check_rho(options, "offcenter_min_separation");
-    detail::check_offcenter_domain(domain, "offcenter_min_separation");
+    detail::require_rho(options, "offcenter_min_separation");
+    detail::require_offcenter_domain(domain, "offcenter_min_separation");
     return detail::OffCenterKernel(domain.origin, domain.width, options).min_separation();
 }
 
@@ -614,13 +614,13 @@ double offcenter_promised_min_angle_deg(const OffCenterMesh2& mesh,
 }
 
 OffCenterMesh2 offcenter_mesh(const DynQuadtree<2>& tree, const OffCenterOptions& options) {
-    detail::check_rho(options, "offcenter_mesh");
-    detail::check_offcenter_domain(tree.options(), "offcenter_mesh");
+    detail::require_rho(options, "offcenter_mesh");
+    detail::require_offcenter_domain(tree.options(), "offcenter_mesh");
     OffCenterRefiner refiner(tree, options);
     return refiner.run();
 }
 
-std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh) {
+CheckReport check_offcenter_mesh(const OffCenterMesh2& mesh) {
     std::vector<std::string> bad;
     const auto n = mesh.points.size();
     std::vector<bool> used(n, false);
@@ -678,7 +678,7 @@ std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh) {
     for (std::size_t k = 0; k < mesh.input_vertices.size(); ++k)
         if (mesh.input_vertices[k] >= n)
             bad.push_back("input point " + std::to_string(k) + " has no vertex");
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 }  // namespace dynmesh

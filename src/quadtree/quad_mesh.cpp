@@ -68,7 +68,7 @@ void leaf_simplices<2>(const CellId<2>& leaf, LeafCode code,
 
 QuadMesh2 quad_mesh(const DynQuadtree<2>& tree) { return detail::mesh_of_tree<2>(tree); }
 
-std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
+CheckReport check_quad_mesh(const QuadMesh2& mesh) {
     std::vector<std::string> bad;
     const auto n = mesh.points.size();
     std::vector<bool> used(n, false);
@@ -113,7 +113,7 @@ std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh) {
         }
     }
     detail::append_vertex_problems<2>(mesh.points, used, bad);
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 AngleRangeDeg angle_range_deg(const QuadMesh2& mesh) {

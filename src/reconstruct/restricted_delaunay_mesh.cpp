@@ -188,7 +188,7 @@ MeshRestrictedDelaunayResult restricted_delaunay_on_mesh(std::span<const Point3>
     MeshCheckOptions co;
     co.require_closed = true;
     co.check_degenerate = false;
-    const MeshCheckReport target = check_mesh(surface, co);
+    const CheckReport target = check_mesh(surface, co);
     if (!target.ok() || surface.n_faces() == 0)
         throw InvalidInput(who + ": the surface is not a closed oriented 2-manifold:\n" + target.summary("  "));
 
@@ -254,13 +254,13 @@ MeshRestrictedDelaunayResult restricted_delaunay_on_mesh(std::span<const Point3>
         } else {
             auto compact = detail::compact_soup(pts, facets);
             SurfaceMesh mesh = SurfaceMesh::from_soup(compact.soup);
-            const MeshCheckReport got = check_mesh(mesh, co);
+            const CheckReport got = check_mesh(mesh, co);
             if (!got.ok()) {
                 last_problem = "not a closed 2-manifold:\n" + got.summary("  ");
-            } else if (got.euler != target.euler || got.components != target.components) {
-                last_problem = "Euler characteristic " + std::to_string(got.euler) + " and " +
-                               std::to_string(got.components) + " components instead of " +
-                               std::to_string(target.euler) + " and " + std::to_string(target.components);
+            } else if (got.integer("euler") != target.integer("euler") || got.integer("components") != target.integer("components")) {
+                last_problem = "Euler characteristic " + std::to_string(got.integer("euler")) + " and " +
+                               std::to_string(got.integer("components")) + " components instead of " +
+                               std::to_string(target.integer("euler")) + " and " + std::to_string(target.integer("components"));
                 // No visible cause: refine where facets turn by more than 60 degrees from the
                 // surface, or everywhere when none does.
                 std::vector<RefineTarget> more;
@@ -276,7 +276,7 @@ MeshRestrictedDelaunayResult restricted_delaunay_on_mesh(std::span<const Point3>
                 best->mesh = std::move(mesh);
                 MeshRestrictedDelaunayReport& r = best->report;
                 r = report;
-                r.euler = got.euler;
+                r.euler = got.integer("euler");
                 for (std::uint32_t k : compact.vertex_sample) r.vertex_sample.push_back(net[k]);
                 r.multi_hit_facets = oracle.multi_hit_facets();
                 r.nonempty_balls = nonempty_balls;

@@ -12,16 +12,32 @@
 #include "dynmesh/skin/topology.hpp"
 
 namespace dynmesh {
+namespace {
 
+/// What check_skin_mesh() measures, before it becomes the report's figures.
+struct SkinMeasures {
+    std::vector<std::string> problems;
+    long long euler = 0;
+    std::size_t components = 0;
+    long long expected_euler = 0, expected_components = 0;
+    double min_angle_deg = 0, angle_floor_deg = 0;
+    double frac_angles_below_15 = 0, frac_angles_below_20 = 0, frac_below_floor = 0;
+    double hausdorff_over_rho_max = 0, hausdorff_max = 0;
+    double normal_dev_max_deg = 0, normal_dev_mean_deg = 0;
+    double vertex_offset_max = 0;
+    std::size_t inward_faces = 0, exempt_faces = 0;
+};
 
-SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, const SkinMeshCheckOptions& options) {
-    SkinMeshCheck out;
+}  // namespace
+
+CheckReport check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, const SkinMeshCheckOptions& options) {
+    SkinMeasures out;
     const double t = options.time;
     MeshCheckOptions mo;
     mo.require_closed = true;
-    const MeshCheckReport topo_check = check_mesh(mesh, mo);
-    out.euler = topo_check.euler;
-    out.components = topo_check.components;
+    const CheckReport topo_check = check_mesh(mesh, mo);
+    out.euler = topo_check.integer("euler");
+    out.components = static_cast<std::size_t>(topo_check.integer("components"));
     if (!topo_check.ok()) out.problems.push_back("not a closed oriented 2-manifold: " + topo_check.summary());
     const std::vector<WeightedPoint> input(phi.balls().begin(), phi.balls().begin() + std::ptrdiff_t(phi.input_balls()));
     const SkinTopology alpha = skin_topology(input, t);
@@ -108,7 +124,25 @@ SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, 
     if (out.normal_dev_max_deg > options.max_normal_deviation_deg)
         out.problems.push_back("normal deviation " + format_number(out.normal_dev_max_deg) + " deg, above " +
                                format_number(options.max_normal_deviation_deg));
-    return out;
+    CheckReport rep;
+    for (std::string& p : out.problems) rep.fail(std::move(p));
+    rep.add("euler", out.euler);
+    rep.add("components", out.components);
+    rep.add("expected_euler", out.expected_euler);
+    rep.add("expected_components", out.expected_components);
+    rep.add("min_angle_deg", out.min_angle_deg);
+    rep.add("angle_floor_deg", out.angle_floor_deg);
+    rep.add("frac_angles_below_15", out.frac_angles_below_15);
+    rep.add("frac_angles_below_20", out.frac_angles_below_20);
+    rep.add("frac_below_floor", out.frac_below_floor);
+    rep.add("exempt_triangles", out.exempt_faces);
+    rep.add("hausdorff_over_rho_max", out.hausdorff_over_rho_max);
+    rep.add("hausdorff_max", out.hausdorff_max);
+    rep.add("normal_dev_max_deg", out.normal_dev_max_deg);
+    rep.add("normal_dev_mean_deg", out.normal_dev_mean_deg);
+    rep.add("vertex_offset_max", out.vertex_offset_max);
+    rep.add("inward_faces", out.inward_faces);
+    return rep;
 }
 
 }  // namespace dynmesh

@@ -56,7 +56,7 @@ InvariantOptions cheap_checks() {
 TEST(DeformInit, VertexNetDormantListsAndRestrictedDelaunayBound) {
     const auto P = sphere_samples(4000, 3);
     Sphere sphere(Point3{0, 0, 0}, 1.0);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-4;
     params.h0_probes = 50000;
     params.init_refine = false;  // the paper's initialisation alone
@@ -105,7 +105,7 @@ TEST(DeformInit, VertexNetDormantListsAndRestrictedDelaunayBound) {
 
 TEST(DeformUpdate, RigidRotationNeedsNoChanges) {
     const auto P0 = sphere_samples(3000, 5);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 0.002;
     params.kappa = 8;
     params.h0 = 0.08;
@@ -133,7 +133,7 @@ struct PulseRun {
 /// Sphere stretched along x by 1 -> 1.6 -> 1 over T units; updates per the schedule, invariants checked at
 /// every update and embedding at every unit.
 PulseRun run_stretch(const std::vector<Point3>& P0, int T, bool every_step, double kappa) {
-    DeformParams params;
+    DeformOptions params;
     params.kappa = kappa;
     params.h0 = 0.09;
     const double amp = 0.6;
@@ -200,7 +200,7 @@ TEST(DeformUpdate, ScheduledMakesFewerChangesThanEveryStep) {
 TEST(DeformEdits, InsertionsFarAndNearAndDeletingHalfTheVertices) {
     const auto P0 = sphere_samples(3000, 11);
     Sphere sphere(Point3{0, 0, 0}, 1.0);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-3;
     params.h0 = 0.09;
     DeformingMesh dm(P0, params, {.surface = &sphere});
@@ -255,7 +255,7 @@ TEST(DeformEdits, InsertionsFarAndNearAndDeletingHalfTheVertices) {
 
 TEST(DeformEdits, QueuedEditsWaitForTheNextStep) {
     const auto P0 = sphere_samples(2000, 13);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-5;
     params.h0 = 0.1;
     Sphere sphere(Point3{0, 0, 0}, 1.0);
@@ -275,7 +275,7 @@ TEST(DeformEdits, QueuedEditsWaitForTheNextStep) {
 
 TEST(DeformBadInput, ClearErrors) {
     const auto P0 = sphere_samples(2000, 17);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-3;
     params.h0 = 0.1;
     auto expect_msg = [](auto&& f, const std::string& needle) {
@@ -286,7 +286,7 @@ TEST(DeformBadInput, ClearErrors) {
             EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
         }
     };
-    DeformParams bad = params;
+    DeformOptions bad = params;
     bad.lambda = 0;
     expect_msg([&] { DeformingMesh dm(P0, bad); }, "lambda");
     bad.lambda = std::nan("");
@@ -298,7 +298,7 @@ TEST(DeformBadInput, ClearErrors) {
     dup[7] = dup[3];
     expect_msg([&] { DeformingMesh dm(dup, params); }, "coincide");
     // Too sparse: h0 as large as the sphere.
-    DeformParams sparse = params;
+    DeformOptions sparse = params;
     sparse.h0 = 3.0;
     expect_msg([&] { DeformingMesh dm(P0, sparse); }, "sparse");
     // Advance: missing ids, NaN, time not increasing.
@@ -312,7 +312,7 @@ TEST(DeformBadInput, ClearErrors) {
 
 TEST(DeformMonitors, TooFastMotionIsReportedAndRecovered) {
     const auto P0 = sphere_samples(3000, 19);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-4;  // the caller claims slow motion...
     params.h0 = 0.09;
     Sphere sphere(Point3{0, 0, 0}, 1.0);
@@ -331,7 +331,7 @@ TEST(DeformMonitors, TooFastMotionIsReportedAndRecovered) {
 
 TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {
     const auto P0 = sphere_samples(3000, 29);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-3;
     params.h0 = 0.09;
     Sphere sphere(Point3{0, 0, 0}, 1.0);
@@ -373,7 +373,7 @@ TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {
 TEST(DeformDeterminism, SameInputSameMesh) {
     const auto P0 = sphere_samples(2000, 23);
     auto run = [&] {
-        DeformParams params;
+        DeformOptions params;
         params.lambda = 2e-3;
         params.kappa = 8;
         params.h0 = 0.1;
@@ -409,7 +409,7 @@ TEST(DeformOrder, TheCallersNumberingDoesNotChangeTheResult) {
         for (std::size_t i = 0; i < p.size(); ++i) q[i] = p[perm[i]];
         return q;
     };
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 0.004;
     params.h0 = 0.1;
     params.kappa = 8;
@@ -444,7 +444,7 @@ TEST(DeformOrder, TheCallersNumberingDoesNotChangeTheResult) {
         const auto P = stretched(P0, 1.0 + 0.02 * t);
         a.advance(t, P);
         b.advance(t, renumbered(P));
-        const UpdateReport ua = a.update(), ub = b.update();
+        const DeformUpdateReport ua = a.update(), ub = b.update();
         EXPECT_EQ(ua.counters.changes(), ub.counters.changes());
         same("after an update");
     }

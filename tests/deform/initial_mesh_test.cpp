@@ -20,7 +20,7 @@
 namespace dynmesh {
 namespace {
 
-MeshCheckReport topology(const SurfaceMesh& m) {
+CheckReport topology(const SurfaceMesh& m) {
     MeshCheckOptions o;
     o.require_closed = true;
     o.check_degenerate = false;
@@ -36,7 +36,7 @@ MeshStart start_on(const std::string& file) {
     MeshStart m{make_scenario(test::shared_data("meshes/" + file).string(), ScenarioOptions{}), nullptr};
     std::vector<Point3> x0;
     for (std::uint32_t q : m.s.initial) x0.push_back(m.s.reference.position(Vertex(q)));
-    DeformParams params;
+    DeformOptions params;
     params.lambda = m.s.lambda;
     params.h0 = m.s.h0;
     params.horizon = m.s.time_units;
@@ -53,11 +53,11 @@ TEST_P(InitOnMeshFile, HasTheInputTopologyAndIsChecked) {
     MeshStart m;
     ASSERT_NO_THROW(m = start_on(file)) << file;
     const SurfaceMesh& mesh = m.dm->mesh();
-    const MeshCheckReport in = topology(*m.s.input_mesh), out = topology(mesh);
+    const CheckReport in = topology(*m.s.input_mesh), out = topology(mesh);
     ASSERT_TRUE(out.ok()) << out.summary();
-    EXPECT_EQ(out.euler, in.euler);
-    EXPECT_EQ(out.components, in.components);
-    EXPECT_EQ(m.dm->init_report().euler, in.euler);
+    EXPECT_EQ(out.integer("euler"), in.integer("euler"));
+    EXPECT_EQ(out.integer("components"), in.integer("components"));
+    EXPECT_EQ(m.dm->init_report().euler, in.integer("euler"));
     EXPECT_NE(m.dm->init_report().tri0, "advancing_front");
     const InvariantReport inv = m.dm->check_invariants();  // with the self-intersection test
     EXPECT_EQ(inv.self_intersections, 0u);
@@ -100,9 +100,9 @@ TEST(MeshRestrictedDelaunay, SphereSamplesOnAFineSphereMesh) {
     std::vector<std::uint32_t> net(pts.size());
     for (std::uint32_t i = 0; i < net.size(); ++i) net[i] = i;
     const auto r = restricted_delaunay_on_mesh(pts, net, reference);
-    const MeshCheckReport c = topology(r.mesh);
+    const CheckReport c = topology(r.mesh);
     ASSERT_TRUE(c.ok()) << c.summary();
-    EXPECT_EQ(c.euler, 2);
+    EXPECT_EQ(c.integer("euler"), 2);
     EXPECT_EQ(r.report.euler, 2);
     EXPECT_TRUE(r.report.correct);
     EXPECT_EQ(r.report.vertex_sample.size(), pts.size());  // every sample is a vertex
@@ -127,7 +127,7 @@ TEST(MeshRestrictedDelaunay, AddsSamplesWhereTheNetIsTooSparseForTheTopology) {
     MeshRestrictedDelaunayOptions o;
     o.max_rounds = 16;
     const auto r = restricted_delaunay_on_mesh(pool, net, reference, o);
-    EXPECT_EQ(topology(r.mesh).euler, 0);
+    EXPECT_EQ(topology(r.mesh).integer("euler"), 0);
     EXPECT_GT(r.report.added, 0u);
     EXPECT_GT(r.report.rounds, 1u);
     // Without the rounds it fails, naming the problem.
@@ -155,7 +155,7 @@ TEST(InitialMeshOnReference, DecimatesTheReferenceWhenNoRestrictedDelaunayHasIts
     EXPECT_EQ(r.path, ReferenceMeshPath::Decimated);
     EXPECT_FALSE(r.fallback_reason.empty());
     EXPECT_EQ(r.mesh.n_faces(), fandisk.n_faces());
-    EXPECT_EQ(topology(r.mesh).euler, 2);
+    EXPECT_EQ(topology(r.mesh).integer("euler"), 2);
 }
 
 }  // namespace

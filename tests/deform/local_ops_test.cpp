@@ -39,12 +39,12 @@ bool bit_equal(const Point3& a, const Point3& b) { return std::memcmp(&a, &b, si
 /// check_mesh clean (closed, no duplicate edges, no degenerate triangles) with this Euler
 /// characteristic; returns a description of what is wrong, empty when fine.
 std::string mesh_problems(const SurfaceMesh& m, long long euler) {
-    const MeshCheckReport rep = check_mesh(m, {.require_closed = true});
+    const CheckReport rep = check_mesh(m, {.require_closed = true});
     std::string out;
     if (!rep.ok()) out += rep.summary("  ");
-    if (rep.duplicate_edges != 0) out += " duplicate edges;";
-    if (!rep.closed) out += " not closed;";
-    if (rep.euler != euler) out += " euler " + std::to_string(rep.euler);
+    if (rep.integer("duplicate_edges") != 0) out += " duplicate edges;";
+    if (!rep.flag("closed")) out += " not closed;";
+    if (rep.integer("euler") != euler) out += " euler " + std::to_string(rep.integer("euler"));
     return out;
 }
 

@@ -34,7 +34,7 @@ TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristic) {
     MeshCheckOptions co;
     co.require_closed = true;
     co.check_degenerate = false;
-    const long long euler = check_mesh(*s.input_mesh, co).euler;
+    const long long euler = check_mesh(*s.input_mesh, co).integer("euler");
     ASSERT_EQ(euler, -4);
     DeformRunOptions ro;
     ro.measure_every = 0;
@@ -42,9 +42,9 @@ TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristic) {
     ro.check_invariants = true;
     std::vector<long long> seen;
     ro.on_frame = [&](const DeformFrame& f) {
-        const MeshCheckReport mc = check_mesh(f.mesh->mesh(), co);
+        const CheckReport mc = check_mesh(f.mesh->mesh(), co);
         EXPECT_TRUE(mc.ok()) << "t = " << f.t << ": " << mc.summary();
-        seen.push_back(mc.euler);
+        seen.push_back(mc.integer("euler"));
     };
     const DeformRunReport r = run_deform(s, ro);
     ASSERT_EQ(seen.size(), 17u);
@@ -53,7 +53,7 @@ TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristic) {
     ASSERT_TRUE(r.violations.count("rollback")) << "no rebuild was attempted: the reproduction is gone";
     EXPECT_GE(r.violations.at("rollback"), 1u);
     EXPECT_GE(r.rollbacks, 1u);
-    const auto lines = check_failures(r, CheckLevel::Invariants);
+    const auto lines = check_failures(r, CheckLevel::Invariants).problems;
     // (Which of the rebuilds comes first, one that fails to close or one with Euler
     // characteristic -6, depends on rounding.)
     const bool named = std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
@@ -73,7 +73,7 @@ TEST(DeformMonitors, GlobalFlipReportsTheBallsItCannotEmpty) {
         p.z *= 0.02;
         pos.push_back(p);
     }
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-3;
     params.h0 = 0.1;
     params.init_refine = false;
@@ -103,7 +103,7 @@ TEST(DeformMonitors, DeletingACapCoarsensTheMeshAndSaysSo) {
     // Deleting every sample of a cap leaves a hole that only large triangles can span: R
     // grows far beyond 2x and Decimation coarsens the whole sphere.
     const std::vector<Point3> P0 = Sphere(Point3{0, 0, 0}, 1.0).sample_uniform(4000, 41);
-    DeformParams params;
+    DeformOptions params;
     params.lambda = 1e-4;
     params.h0 = 0.07;
     const Sphere sphere(Point3{0, 0, 0}, 1.0);
@@ -112,7 +112,7 @@ TEST(DeformMonitors, DeletingACapCoarsensTheMeshAndSaysSo) {
     for (SampleId id = 0; id < P0.size(); ++id)
         if (P0[id].z > 0.6) dm.queue_deletion(id);
     const std::size_t before = dm.mesh().n_vertices();
-    const UpdateReport u = dm.update();
+    const DeformUpdateReport u = dm.update();
     ASSERT_GT(u.R_after, 2 * u.R_before);
     EXPECT_EQ(u.vertices_before, before);
     ASSERT_EQ(count_kind(u.violations, "coarsened"), 1u);

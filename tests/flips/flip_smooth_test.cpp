@@ -70,7 +70,7 @@ TEST(FlipAll, WorsenThenSmoothRestoresTheMesh) {
         // Integrity (acceptance check 5).
         const auto chk = check_mesh(m, {.require_closed = true});
         EXPECT_TRUE(chk.ok()) << chk.summary();
-        EXPECT_EQ(chk.euler, 2);
+        EXPECT_EQ(chk.integer("euler"), 2);
         EXPECT_EQ(m.positions(), initial.positions()) << "a flip moved a vertex";
         // Idempotence (check 4).
         const FlipReport again = flip_all(m);
@@ -223,9 +223,9 @@ TEST(FlipLocal, RepairsAWorsenedCapAndLeavesTheRestAlone) {
         const std::vector<Vertex> cap = worsen_cap(m, seed);
         ASSERT_GT(cap.size(), 20u);
         const SurfaceMesh worsened = m;
-        const LocalFlipCheck bad = check_local_flip(worsened, worsened, cap, {.final_m = 3, .converged = true});
-        ASSERT_GT(bad.flippable_edges, 0u) << "the cap is not worsened";
-        ASSERT_GT(bad.illegal_edges, 0u);
+        const CheckReport bad = check_local_flip(worsened, worsened, cap, {.final_m = 3, .converged = true});
+        ASSERT_GT(bad.integer("flippable_edges"), 0) << "the cap is not worsened";
+        ASSERT_GT(bad.integer("illegal_edges"), 0);
 
         const LocalFlipReport r = flip_local(m, cap);
         EXPECT_TRUE(r.converged);
@@ -233,11 +233,11 @@ TEST(FlipLocal, RepairsAWorsenedCapAndLeavesTheRestAlone) {
         EXPECT_GE(r.window_vertices, cap.size());
         const auto chk = check_mesh(m, {.require_closed = true});
         EXPECT_TRUE(chk.ok()) << chk.summary();
-        const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+        const CheckReport c = check_local_flip(worsened, m, cap, r);
         EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
-        EXPECT_GT(c.near_faces, 2 * cap.size());
-        EXPECT_GT(c.far_faces, m.n_faces() / 2) << "most of the sphere is far from the cap";
-        EXPECT_EQ(c.unchecked_balls, 0u);
+        EXPECT_GT(c.figure("near_faces"), 2 * cap.size());
+        EXPECT_GT(c.figure("far_faces"), m.n_faces() / 2) << "most of the sphere is far from the cap";
+        EXPECT_EQ(c.integer("unchecked_balls"), 0);
         std::printf("flip_local: %zu cap vertices, %zu rounds, final m %zu, %zu flips, window %zu vertices\n",
                     cap.size(), r.rounds, r.final_m, r.flips.flips, r.window_vertices);
     }
@@ -256,13 +256,13 @@ TEST(FlipLocal, CheckFindsChangesFarAwayAndMovedVertices) {
         if (far.position(far.vertex(e, 0)).z < -0.95 && far.is_flip_ok(e)) south = e;
     ASSERT_TRUE(south.is_valid());
     far.flip(south);
-    const LocalFlipCheck c = check_local_flip(worsened, far, cap, r);
-    EXPECT_EQ(c.far_faces_changed, 2u);
+    const CheckReport c = check_local_flip(worsened, far, cap, r);
+    EXPECT_EQ(c.integer("far_faces_changed"), 2);
     EXPECT_FALSE(c.ok());
     SurfaceMesh moved = m;
     moved.position(Vertex(0)).x = std::nextafter(moved.position(Vertex(0)).x, 2.0);
-    const LocalFlipCheck d = check_local_flip(worsened, moved, cap, r);
-    EXPECT_EQ(d.moved_vertices, 1u);
+    const CheckReport d = check_local_flip(worsened, moved, cap, r);
+    EXPECT_EQ(d.integer("moved_vertices"), 1);
     EXPECT_FALSE(d.ok());
     EXPECT_FALSE(check_local_flip(worsened, m, cap, {.final_m = r.final_m, .converged = false}).ok());
 }
@@ -280,12 +280,12 @@ TEST(FlipLocal, CheckCatchesAFoldFromElsewhere) {
     for (auto t : sa.triangles) soup.triangles.push_back({t[0] + n, t[2] + n, t[1] + n});
     const SurfaceMesh two = SurfaceMesh::from_soup(soup);
     const std::vector<Vertex> V = {Vertex(3 * 7 + 3)};  // the middle of the first grid
-    const LocalFlipCheck c = check_local_flip(two, two, V, {.final_m = 3, .converged = true});
-    EXPECT_GT(c.nonempty_balls, 0u);
-    EXPECT_EQ(c.illegal_edges, 0u) << "the near sheet itself is Delaunay";
+    const CheckReport c = check_local_flip(two, two, V, {.final_m = 3, .converged = true});
+    EXPECT_GT(c.integer("nonempty_balls"), 0);
+    EXPECT_EQ(c.integer("illegal_edges"), 0) << "the near sheet itself is Delaunay";
     // Without the other sheet, the same triangles have empty balls.
-    const LocalFlipCheck alone = check_local_flip(a, a, V, {.final_m = 3, .converged = true});
-    EXPECT_EQ(alone.nonempty_balls, 0u);
+    const CheckReport alone = check_local_flip(a, a, V, {.final_m = 3, .converged = true});
+    EXPECT_EQ(alone.integer("nonempty_balls"), 0);
 }
 
 // The stop test (LocalFlipReport) against an all-pairs version written here: on a mesh that
@@ -350,9 +350,9 @@ TEST(FlipLocal, LeavesAWorsenedRestAlone) {
     const SurfaceMesh worsened = m;
     const LocalFlipReport r = flip_local(m, cap);
     EXPECT_TRUE(r.converged);
-    const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+    const CheckReport c = check_local_flip(worsened, m, cap, r);
     EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
-    EXPECT_GT(c.far_faces, m.n_faces() / 2);
+    EXPECT_GT(c.figure("far_faces"), m.n_faces() / 2);
     EXPECT_GT(flip_diagnostics(m, FlipRule::AngleDef3).flippable, 100u) << "the rest is still worsened";
     // One round with a one-hop window: it flips only edges with both ends within 1 hop of V
     // in the input, so every triangle it changes has its three corners within 2 hops there,
@@ -370,7 +370,7 @@ TEST(FlipLocal, LeavesAWorsenedRestAlone) {
             ++changed;
             for (Vertex x : c) EXPECT_TRUE(hops.contains(x.idx())) << "vertex " << v << ": a flip outside the window";
         }
-        EXPECT_EQ(check_local_flip(worsened, one, V, r1).far_faces_changed, 0u);
+        EXPECT_EQ(check_local_flip(worsened, one, V, r1).integer("far_faces_changed"), 0);
     }
     EXPECT_GT(changed, 100u);
 }
@@ -384,7 +384,7 @@ TEST(FlipLocal, WindowGrowsUntilFIsRepaired) {
     const LocalFlipReport r = flip_local(m, cap, {.m0 = 1});
     EXPECT_TRUE(r.converged);
     EXPECT_GE(r.rounds, 2u);
-    const LocalFlipCheck c = check_local_flip(worsened, m, cap, r);
+    const CheckReport c = check_local_flip(worsened, m, cap, r);
     EXPECT_TRUE(c.ok()) << ::testing::PrintToString(c.problems);
 }
 

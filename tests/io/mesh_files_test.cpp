@@ -37,7 +37,7 @@ TEST(MeshFiles, ValidMeshesLoadClosedWithExactSizes) {
         const SurfaceMesh mesh = read_mesh(path);
         EXPECT_EQ(mesh.n_vertices(), e.vertices);
         EXPECT_EQ(mesh.n_faces(), e.faces);
-        const MeshCheckReport report = check_mesh(mesh, {.require_closed = true});
+        const CheckReport report = check_mesh(mesh, {.require_closed = true});
         EXPECT_TRUE(report.ok()) << report.summary("  ");
         covered.insert(e.file);
     }
@@ -152,10 +152,10 @@ TEST(MeshFiles, MeshWithBorderLoadsButIsOpen) {
     const SurfaceMesh mesh = read_mesh(defective("mesh_with_border.off"));
     EXPECT_EQ(mesh.n_vertices(), 548u);
     EXPECT_EQ(mesh.n_faces(), 1014u);
-    const MeshCheckReport closed = check_mesh(mesh, {.require_closed = true});
+    const CheckReport closed = check_mesh(mesh, {.require_closed = true});
     EXPECT_FALSE(closed.ok());
-    EXPECT_FALSE(closed.closed);
-    EXPECT_GT(closed.boundary_edges, 0u);
+    EXPECT_FALSE(closed.flag("closed"));
+    EXPECT_GT(closed.integer("boundary_edges"), 0);
 }
 
 TEST(MeshFiles, IntersectingTetraLoadsAsSoup) {

@@ -36,7 +36,7 @@ TEST(MeshOrder, PermuteAndInverseRestoreTheMeshBitForBit) {
     EXPECT_FALSE(test::mesh_difference(m, original).empty());
     const auto chk = check_mesh(m, {.require_closed = true});
     EXPECT_TRUE(chk.ok()) << chk.summary();
-    EXPECT_EQ(chk.euler, 2);
+    EXPECT_EQ(chk.integer("euler"), 2);
     auto moved = m.get_vertex_property<int>("v:tag");
     for (std::uint32_t i = 0; i < m.vertices_size(); ++i) {
         EXPECT_EQ(m.position(Vertex(i)), original.position(Vertex(order.vertices[i])));

@@ -13,7 +13,7 @@ namespace {
 void expect_valid_closed(const SurfaceMesh& m, long long euler, const std::string& ctx) {
     const auto r = check_mesh(m, {.require_closed = true});
     EXPECT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
-    EXPECT_EQ(r.euler, euler) << ctx;
+    EXPECT_EQ(r.integer("euler"), euler) << ctx;
 }
 
 TEST(SurfaceMesh, BuildsClosedMeshes) {
@@ -31,8 +31,8 @@ TEST(SurfaceMesh, OpenGridHasBoundary) {
     const SurfaceMesh g = test::grid(3);
     const auto r = check_mesh(g);
     EXPECT_TRUE(r.ok()) << r.summary();
-    EXPECT_FALSE(r.closed);
-    EXPECT_EQ(r.boundary_edges, 12u);
+    EXPECT_FALSE(r.flag("closed"));
+    EXPECT_EQ(r.integer("boundary_edges"), 12);
     EXPECT_FALSE(check_mesh(g, {.require_closed = true}).ok());
 }
 
@@ -110,7 +110,7 @@ TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
             }
             const auto r = check_mesh(m, {.require_closed = true, .check_degenerate = false});
             ASSERT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
-            ASSERT_EQ(r.euler, 2) << ctx;
+            ASSERT_EQ(r.integer("euler"), 2) << ctx;
             if (step % 50 == 49) {
                 m.garbage_collection();
                 const auto r2 = check_mesh(m, {.require_closed = true, .check_degenerate = false});
@@ -140,8 +140,8 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
     {
         const auto r = check_mesh(m, {.require_closed = true});
         ASSERT_TRUE(r.ok()) << r.summary("  ");
-        EXPECT_EQ(r.components, 2u);
-        EXPECT_EQ(r.euler, 4);
+        EXPECT_EQ(r.integer("components"), 2);
+        EXPECT_EQ(r.integer("euler"), 4);
     }
     Vertex pole = *m.vertices().begin();
     for (std::uint32_t i = 0; i < n; ++i)
@@ -175,8 +175,8 @@ TEST(SurfaceMesh, ReplaceFacesAddsJoinsAndRemovesComponents) {
     {
         const auto r = check_mesh(m, {.require_closed = true});
         ASSERT_TRUE(r.ok()) << r.summary("  ");
-        EXPECT_EQ(r.components, 1u);
-        EXPECT_EQ(r.euler, 2);
+        EXPECT_EQ(r.integer("components"), 1);
+        EXPECT_EQ(r.integer("euler"), 2);
     }
     // An unused vertex can go on its own; one in use cannot.
     const Vertex lone = m.add_vertex({9, 9, 9});
@@ -222,7 +222,7 @@ TEST(SurfaceMesh, SplitEdgeOnBoundary) {
         }
     const auto r = check_mesh(g);
     EXPECT_TRUE(r.ok()) << r.summary();
-    EXPECT_EQ(r.euler, 1);
+    EXPECT_EQ(r.integer("euler"), 1);
 }
 
 TEST(SurfaceMesh, RemoveVertexWithGivenTriangulation) {
@@ -254,6 +254,68 @@ TEST(SurfaceMesh, PropertiesFollowGarbageCollection) {
     ASSERT_TRUE(ctag.is_valid());
     ctag[Vertex(0)] = 1000;
     EXPECT_NE(tag[Vertex(0)], 1000);
+}
+
+TEST(SurfaceMesh, AddingAPropertyUnderAnExistingNameThrows) {
+    SurfaceMesh m = test::icosphere(1);
+    auto tag = m.add_vertex_property<int>("tag", 1);
+    EXPECT_THROW(m.add_vertex_property<int>("tag", 2), InvalidInput);
+    EXPECT_THROW(m.add_vertex_property<double>("tag"), InvalidInput);  // any type
+    EXPECT_EQ(tag[Vertex(0)], 1) << "the first property is untouched";
+    // Each element kind has its own names.
+    auto ftag = m.add_face_property<char>("tag", 0);
+    EXPECT_THROW(m.add_face_property<char>("tag"), InvalidInput);
+    auto etag = m.add_edge_property<float>("tag");
+    EXPECT_THROW(m.add_edge_property<float>("tag"), InvalidInput);
+    EXPECT_TRUE(ftag.is_valid() && etag.is_valid());
+    // A copy keeps the names taken; a removed property frees its name.
+    SurfaceMesh copy = m;
+    EXPECT_THROW(copy.add_vertex_property<int>("tag"), InvalidInput);
+    m.remove_property(tag);
+    EXPECT_TRUE(m.add_vertex_property<int>("tag", 3).is_valid());
+}
+
+TEST(SurfaceMesh, IsValidIsFalseForDeletedAndOutOfRangeElements) {
+    SurfaceMesh m = test::icosphere(1);
+    const auto nv = static_cast<std::uint32_t>(m.vertices_size()), ne = static_cast<std::uint32_t>(m.edges_size()),
+               nf = static_cast<std::uint32_t>(m.faces_size());
+    for (Vertex v : m.vertices()) EXPECT_TRUE(m.is_valid(v));
+    for (Edge e : m.edges()) EXPECT_TRUE(m.is_valid(e) && m.is_valid(SurfaceMesh::halfedge(e, 1)));
+    for (Face f : m.faces()) EXPECT_TRUE(m.is_valid(f));
+    EXPECT_FALSE(m.is_valid(Vertex()));
+    EXPECT_FALSE(m.is_valid(Vertex(nv)));
+    EXPECT_FALSE(m.is_valid(Edge(ne)));
+    EXPECT_FALSE(m.is_valid(Halfedge(2 * ne)));
+    EXPECT_FALSE(m.is_valid(Face(nf)));
+    EXPECT_FALSE(m.is_valid(Face()));
+
+    ASSERT_TRUE(m.remove_vertex(Vertex(3)));
+    ASSERT_TRUE(m.has_garbage());
+    EXPECT_FALSE(m.is_valid(Vertex(3))) << "a deleted vertex is not usable";
+    std::size_t deleted_edges = 0, deleted_faces = 0;
+    for (std::uint32_t i = 0; i < m.edges_size(); ++i) {
+        const Edge e(i);
+        deleted_edges += m.is_deleted(e);
+        EXPECT_EQ(m.is_valid(e), !m.is_deleted(e)) << "edge " << i;
+        EXPECT_EQ(m.is_valid(SurfaceMesh::halfedge(e, 0)), !m.is_deleted(e)) << "edge " << i;
+    }
+    for (std::uint32_t i = 0; i < m.faces_size(); ++i) {
+        deleted_faces += m.is_deleted(Face(i));
+        EXPECT_EQ(m.is_valid(Face(i)), !m.is_deleted(Face(i))) << "face " << i;
+    }
+    EXPECT_GT(deleted_edges, 0u);
+    EXPECT_GT(deleted_faces, 0u);
+    // Deleted elements are refused where a usable one is required.
+    Face dead;
+    for (std::uint32_t i = 0; i < m.faces_size() && !dead.is_valid(); ++i)
+        if (m.is_deleted(Face(i))) dead = Face(i);
+    EXPECT_THROW(m.split_face(dead, Point3{0, 0, 0}), InvalidInput);
+
+    m.garbage_collection();
+    for (std::uint32_t i = 0; i < m.vertices_size(); ++i) EXPECT_TRUE(m.is_valid(Vertex(i)));
+    for (std::uint32_t i = 0; i < m.edges_size(); ++i) EXPECT_TRUE(m.is_valid(Edge(i)));
+    for (std::uint32_t i = 0; i < m.faces_size(); ++i) EXPECT_TRUE(m.is_valid(Face(i)));
+    EXPECT_FALSE(m.is_valid(Vertex(static_cast<std::uint32_t>(m.vertices_size()))));
 }
 
 }  // namespace

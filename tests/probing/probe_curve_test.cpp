@@ -56,14 +56,14 @@ TEST(ProbeCurve, CircleIsOneClosedPolygonWithChordsWithinTheBound) {
     const ProbingOptions o = curve_options(circle, eps, 1.5);
     const ProbingResult r = probe_curve(circle, o);
     expect_one_closed_loop(r);
-    const ProbingCheckReport c = check_probing(r, circle, o, 2);
+    const CheckReport c = check_probing(r, circle, o, 2);
     EXPECT_TRUE(c.ok()) << c.problems.front();
-    EXPECT_EQ(c.euler, 0);
+    EXPECT_EQ(c.integer("euler"), 0);
     // Each edge is a chord with a disk of radius <= eps centred on the circle: it stays within
     // 1 - sqrt(1 - eps^2) of the circle.
-    EXPECT_LE(c.hausdorff, 1 - std::sqrt(1 - eps * eps) + 1e-9);
-    EXPECT_LE(c.max_ball_radius, eps);
-    EXPECT_LE(c.sample_gap, 2 * eps);
+    EXPECT_LE(c.figure("hausdorff"), 1 - std::sqrt(1 - eps * eps) + 1e-9);
+    EXPECT_LE(c.figure("max_ball_radius"), eps);
+    EXPECT_LE(c.figure("sample_gap"), 2 * eps);
     // Samples inserted by refinement are more than eps from the earlier ones.
     for (std::size_t i = 3; i < r.sample.size(); ++i)
         for (std::size_t j = 0; j < i; ++j) ASSERT_GT(distance(r.sample[i], r.sample[j]), eps) << i << " " << j;
@@ -79,9 +79,9 @@ TEST(ProbeCurve, StarUsesDetectionPathsAndKeepsTheInvariants) {
     const ProbingOptions o = curve_options(star, eps, 3);
     const ProbingResult r = probe_curve(star, o);
     expect_one_closed_loop(r);
-    const ProbingCheckReport c = check_probing(r, star, o, 2);
+    const CheckReport c = check_probing(r, star, o, 2);
     EXPECT_TRUE(c.ok()) << c.problems.front();
-    EXPECT_LE(c.hausdorff, c.hausdorff_bound);
+    EXPECT_LE(c.figure("hausdorff"), c.figure("hausdorff_bound"));
     EXPECT_GT(r.report.activations, 0u);
     EXPECT_EQ(r.report.detection_edges, 2 * r.report.activations);
     EXPECT_GT(r.report.segments_checked, 0u);

@@ -23,7 +23,7 @@ namespace {
 struct ProbeRun {
     ProbingOptions options;
     ProbingResult result;
-    ProbingCheckReport check;
+    CheckReport check;
 };
 
 ProbeRun probe(const ProbeObject& object, const std::vector<Point3>& interior, const Ball& omega, double eps,
@@ -47,17 +47,17 @@ ProbeRun probe(const ProbeObject& object, const std::vector<Point3>& interior, c
                 "%.2f s\n",
                 eps, p.vertices, p.probes, double(p.probes) / double(std::max<std::size_t>(p.vertices, 1)),
                 p.probes_inferred, p.cells_created, p.nodes_retained, p.detection_edges, p.positioning_edges,
-                p.path_length, p.exterior_path_length, run.check.hausdorff, run.check.hausdorff_bound, p.seconds);
+                p.path_length, p.exterior_path_length, run.check.figure("hausdorff"), run.check.figure("hausdorff_bound"), p.seconds);
     return run;
 }
 
 /// The checks every run must pass, and the cost identities of spec §7 test 6.
 void expect_guarantees(const ProbeRun& r) {
     EXPECT_TRUE(r.check.ok()) << r.check.problems.size() << " problems, first: " << r.check.problems.front();
-    EXPECT_TRUE(r.check.closed_manifold);
-    EXPECT_LE(r.check.max_ball_radius, r.options.eps);
-    EXPECT_LE(r.check.sample_gap, 2 * r.options.eps);
-    EXPECT_LE(r.check.hausdorff, r.check.hausdorff_bound);
+    EXPECT_TRUE(r.check.flag("closed_manifold"));
+    EXPECT_LE(r.check.figure("max_ball_radius"), r.options.eps);
+    EXPECT_LE(r.check.figure("sample_gap"), 2 * r.options.eps);
+    EXPECT_LE(r.check.figure("hausdorff"), r.check.figure("hausdorff_bound"));
     const ProbingReport& p = r.result.report;
     EXPECT_EQ(p.grazing_hits, 0u);
     // Each directed edge is probed at most once: probes ≤ 2 × edges created + bootstrap.
@@ -101,27 +101,27 @@ TEST(ProbeShapes, TorusHasGenusOneAndUsesPaths) {
     const TorusOracle torus(Torus({0, 0, 0}, 1, 0.35), {.strict = true});
     const ProbeRun r = probe(torus, {torus.shape().interior_point()}, {{0, 0, 0}, 1.5}, 0.03, 0.35, 250);
     expect_guarantees(r);
-    EXPECT_EQ(r.check.euler, 0);
+    EXPECT_EQ(r.check.integer("euler"), 0);
     EXPECT_GT(r.result.report.detection_edges, 0u);
     EXPECT_GT(r.result.report.positioning_edges, 0u);
     EXPECT_GT(r.result.report.nodes_retained, 0u);
     // The empirical regression bound of §10.5 (CGAL's Chew gives 0.00127 here).
-    EXPECT_LE(r.check.hausdorff, 0.03 * 0.03 / 0.35);
+    EXPECT_LE(r.check.figure("hausdorff"), 0.03 * 0.03 / 0.35);
 }
 
 TEST(ProbeShapes, EllipsoidIsASphereTopologically) {
     const EllipsoidOracle ell(Ellipsoid({0, 0, 0}, 1, 0.8, 0.6), {.strict = true});
     const ProbeRun r = probe(ell, {{0, 0, 0}}, {{0, 0, 0}, 1.2}, 0.03, ell.reach(), 500);
     expect_guarantees(r);
-    EXPECT_EQ(r.check.euler, 2);
-    EXPECT_LE(r.check.hausdorff, 0.03 * 0.03 / ell.reach());
+    EXPECT_EQ(r.check.integer("euler"), 2);
+    EXPECT_LE(r.check.figure("hausdorff"), 0.03 * 0.03 / ell.reach());
 }
 
 TEST(ProbeShapes, GenusTwoSurface) {
     const Genus2Oracle g({.strict = true});
     const ProbeRun r = probe(g, {Genus2Oracle::interior_point()}, {{0, 0, 0}, 3.2}, 0.0225, g.reach(), SIZE_MAX);
     expect_guarantees(r);
-    EXPECT_EQ(r.check.euler, -2);
+    EXPECT_EQ(r.check.integer("euler"), -2);
     EXPECT_GT(r.result.report.detection_edges, 0u);
 }
 
@@ -130,8 +130,8 @@ TEST(ProbeShapes, TwoDisjointBalls) {
     const BallsOracle balls({{{-0.8, 0, 0}, 0.5}, {{0.8, 0.1, 0}, 0.5}}, {.strict = true});
     const ProbeRun r = probe(balls, {{-0.8, 0, 0}, {0.8, 0.1, 0}}, {{0, 0, 0}, 1.6}, 0.025, balls.reach(), 1000);
     expect_guarantees(r);
-    EXPECT_EQ(r.check.components, 2u);
-    EXPECT_EQ(r.check.euler, 4);
+    EXPECT_EQ(r.check.integer("components"), 2);
+    EXPECT_EQ(r.check.integer("euler"), 4);
     EXPECT_EQ(r.result.report.reinitialisations, 0u);
 }
 
@@ -149,11 +149,11 @@ TEST(ProbeShapes, AComponentHiddenBehindAnotherIsFoundAgain) {
     o.interior_points = {{0, 0, 0}, {1.3, 0, 0}};
     o.ground_truth = &balls;
     const ProbingResult r = probe_surface(balls, o);
-    const ProbingCheckReport c = check_probing(r, balls, o, 3);
+    const CheckReport c = check_probing(r, balls, o, 3);
     EXPECT_GE(r.report.reinitialisations, 1u);
-    EXPECT_EQ(c.components, 2u);
-    EXPECT_EQ(c.euler, 4);
-    EXPECT_TRUE(c.closed_manifold);
+    EXPECT_EQ(c.integer("components"), 2);
+    EXPECT_EQ(c.integer("euler"), 4);
+    EXPECT_TRUE(c.flag("closed_manifold"));
     EXPECT_TRUE(r.problems.empty()) << r.problems.front();
 }
 
@@ -170,7 +170,7 @@ TEST(ProbeShapes, RealMeshesThroughTheMeshOracle) {
         const ProbeSetup setup = make_probe_object(test::shared_data(c.file).string(), {.strict = true});
         const ProbeRun r = probe(*setup.object, setup.interior_points, setup.omega, c.eps, c.eps_S, 2000);
         expect_guarantees(r);
-        EXPECT_EQ(r.check.euler, setup.object->euler_characteristic());
+        EXPECT_EQ(r.check.integer("euler"), setup.object->euler_characteristic());
     }
 }
 
@@ -230,7 +230,7 @@ TEST(ProbeShapes, OmniscientBaselineMeshesTheSameSurface) {
     const ProbeRun omni = probe(torus, {torus.shape().interior_point()}, {{0, 0, 0}, 1.5}, 0.04, 0.35, SIZE_MAX,
                                 ProbingMode::Omniscient, true);
     EXPECT_TRUE(omni.check.ok()) << omni.check.problems.front();
-    EXPECT_EQ(omni.check.euler, 0);
+    EXPECT_EQ(omni.check.integer("euler"), 0);
     EXPECT_EQ(omni.result.report.path_length, 0);
     EXPECT_EQ(omni.result.report.exterior_path_length, 0);
     EXPECT_EQ(omni.result.report.detection_edges + omni.result.report.positioning_edges, 0u);

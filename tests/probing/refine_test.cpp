@@ -82,9 +82,9 @@ TEST(ProbeSurface, SphereIsAClosedManifoldWithSmallBalls) {
     ASSERT_GT(r.mesh.triangles.size(), 100u);
     EXPECT_TRUE(r.problems.empty()) << r.problems.front();
     const SurfaceMesh m = SurfaceMesh::from_soup(r.mesh);
-    const MeshCheckReport check = check_mesh(m, {.require_closed = true, .require_connected = true});
+    const CheckReport check = check_mesh(m, {.require_closed = true, .require_connected = true});
     EXPECT_TRUE(check.ok()) << check.summary();
-    EXPECT_EQ(check.euler, 2);
+    EXPECT_EQ(check.integer("euler"), 2);
     EXPECT_LE(r.report.max_ball_radius, eps);
     std::printf("sphere eps %.3f: %zu vertices, %zu facets, %zu probes (%zu bootstrap), %zu cells, "
                 "%zu retained, %zu detection / %zu positioning edges, path %.3f, exterior %.3f\n",

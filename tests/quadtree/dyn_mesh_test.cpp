@@ -24,8 +24,8 @@ const auto& simplices_of(const OctMesh3& m) { return m.tets; }
 
 SimplexMeshD<2> static_mesh(const DynQuadtree<2>& t) { return quad_mesh(t); }
 SimplexMeshD<3> static_mesh(const DynQuadtree<3>& t) { return oct_mesh(t); }
-std::vector<std::string> check_mesh(const QuadMesh2& m) { return check_quad_mesh(m); }
-std::vector<std::string> check_mesh(const OctMesh3& m) { return check_oct_mesh(m); }
+std::vector<std::string> check_mesh(const QuadMesh2& m) { return check_quad_mesh(m).problems; }
+std::vector<std::string> check_mesh(const OctMesh3& m) { return check_oct_mesh(m).problems; }
 
 /// Field-by-field equality (the canonical output files are a function of these).
 template <class M>
@@ -183,10 +183,10 @@ TEST(DynQuadMesh, PointsAFewQuantaApart3D) { check_quantum_clusters<3>(72, 15); 
 TEST(DynQuadMesh, EmptyMeshCoversTheDomain) {
     const DynQuadMesh<2> m2;
     EXPECT_EQ(m2.simplex_count(), 2u);
-    EXPECT_TRUE(check_quad_mesh(m2.mesh()).empty());
+    EXPECT_TRUE(check_quad_mesh(m2.mesh()).ok());
     const DynQuadMesh<3> m3;
     EXPECT_EQ(m3.simplex_count(), 12u);  // the root cube: 6 faces × 2 triangles, coned
-    EXPECT_TRUE(check_oct_mesh(m3.mesh()).empty());
+    EXPECT_TRUE(check_oct_mesh(m3.mesh()).ok());
 }
 
 TEST(DynQuadMesh, InsertThenEraseRestoresTheMesh) {
@@ -247,7 +247,7 @@ TEST(DynQuadMesh, RefusesPointsBeyondPrecision) {
     ASSERT_EQ(dm.insert({1.5, 1.5}), InsertResult::Inserted);
     ASSERT_EQ(dm.insert({1.25, 1.75}), InsertResult::Inserted);
     const std::string dump = dm.canonical_dump();
-    const MeshUpdateReport<2> rep = dm.last_update();
+    const QuadMeshUpdateReport<2> rep = dm.last_update();
     const std::size_t change = dm.last_change().added_simplices.size();
     const std::vector<SimplexCoords<2>> live = live_coords<2>(dm.current_mesh());
     for (double d : {1e-14, 1e-13, 1e-12}) {
@@ -261,13 +261,13 @@ TEST(DynQuadMesh, RefusesPointsBeyondPrecision) {
     EXPECT_TRUE(dm.check_invariants().empty()) << joined(dm.check_invariants());
     // Far enough for the rounded lattice (a leaf spans > 2^14 ulps): accepted and valid.
     ASSERT_EQ(dm.insert({1.5 + 1e-8, 1.5}), InsertResult::Inserted);
-    EXPECT_TRUE(check_quad_mesh(dm.mesh()).empty());
+    EXPECT_TRUE(check_quad_mesh(dm.mesh()).ok());
     EXPECT_TRUE(dm.check_invariants().empty()) << joined(dm.check_invariants());
 
     DynQuadMesh<2> exact;  // the unit box: dyadic
     ASSERT_EQ(exact.insert({0.5, 0.5}), InsertResult::Inserted);
     ASSERT_EQ(exact.insert({0.5 + 1e-14, 0.5}), InsertResult::Inserted);
-    EXPECT_TRUE(check_quad_mesh(exact.mesh()).empty());
+    EXPECT_TRUE(check_quad_mesh(exact.mesh()).ok());
     EXPECT_TRUE(exact.check_invariants().empty()) << joined(exact.check_invariants());
 }
 
@@ -312,7 +312,7 @@ TEST(DynQuadMesh, CustomDomain) {
     EXPECT_EQ(dm.tree().options().mode, QuadtreeMode::Mesh);
     const QuadMesh2 m = dm.mesh();
     EXPECT_EQ(m.origin.x, -3.0);
-    EXPECT_TRUE(check_quad_mesh(m).empty());
+    EXPECT_TRUE(check_quad_mesh(m).ok());
     const AngleRangeDeg a = angle_range_deg(m);
     EXPECT_GE(a.min, kQuadMeshMinAngleDeg - 1e-6);
     EXPECT_LE(a.max, kQuadMeshMaxAngleDeg + 1e-6);

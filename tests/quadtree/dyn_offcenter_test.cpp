@@ -101,7 +101,7 @@ void expect_matches_oracle(const DynOffCenterMesh2& dyn, const std::vector<Vec2>
 
 void expect_quality(const DynOffCenterMesh2& dyn, const std::string& what) {
     const OffCenterMesh2 mesh = dyn.mesh();
-    const auto bad = check_offcenter_mesh(mesh);
+    const auto bad = check_offcenter_mesh(mesh).problems;
     EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
     // The documented bound holds up to the closed-leaf slack δ(ℓ) = 1e-12 + 64·ε·S/ℓ radians of
     // the shortest edge (offcenter.hpp), which matters for the near-duplicate family only.
@@ -164,7 +164,7 @@ void random_walk(Family family, std::size_t pool_size, int steps, std::uint64_t 
         // A copy fed only with the deltas stays equal to the live mesh, slot for slot.
         mirror.apply(dyn.last_change(), what);
         mirror.expect_equals(dyn.current_mesh(), what);
-        EXPECT_EQ(dyn.last_update().triangles_added, dyn.last_change().added_simplices.size());
+        EXPECT_EQ(dyn.last_update().simplices_added, dyn.last_change().added_simplices.size());
         if (::testing::Test::HasFailure()) return;
         EXPECT_EQ(dyn.last_update().full_recomputes, 0u) << what;
         if (step % check_every == check_every - 1) {
@@ -308,8 +308,8 @@ double mean_offcenter_work(std::size_t n) {
         dyn, queries,
         [](const DynOffCenterMesh2& m) {
             const OffCenterUpdateReport& r = m.last_update();
-            return static_cast<double>(r.evaluations + r.queries + r.triangles_added +
-                                       r.triangles_removed);
+            return static_cast<double>(r.evaluations + r.queries + r.simplices_added +
+                                       r.simplices_removed);
         },
         100);
 }

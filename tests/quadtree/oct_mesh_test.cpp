@@ -67,7 +67,7 @@ std::vector<Vec3> lattice_points(std::size_t n, std::uint64_t seed) {
 /// Validity, quality and "every input point is a vertex", for one tree.
 void expect_good_mesh(const DynQuadtree<3>& tree, const std::string& what) {
     const OctMesh3 mesh = oct_mesh(tree);
-    const auto bad = check_oct_mesh(mesh);
+    const auto bad = check_oct_mesh(mesh).problems;
     EXPECT_TRUE(bad.empty()) << what << ":\n" << joined(bad);
     expect_inputs_are_vertices(tree, mesh, what);
     const DihedralRangeDeg a = dihedral_range_deg(mesh);
@@ -84,7 +84,7 @@ TEST(OctMesh, EmptyTreeIsTheConeOfTheCube) {
     EXPECT_EQ(mesh.points.size(), 9u);  // 8 corners and the centre
     EXPECT_EQ(mesh.tets.size(), 12u);   // 6 faces × 2 triangles
     EXPECT_EQ(mesh.leaves, 1u);
-    EXPECT_TRUE(check_oct_mesh(mesh).empty()) << joined(check_oct_mesh(mesh));
+    EXPECT_TRUE(check_oct_mesh(mesh).ok()) << joined(check_oct_mesh(mesh).problems);
     const DihedralRangeDeg a = dihedral_range_deg(mesh);
     EXPECT_NEAR(a.min, 45.0, 1e-9);  // cone from the centre over diagonal-split faces
     EXPECT_NEAR(a.max, 120.0, 1e-9);
@@ -163,7 +163,7 @@ TEST(OctMesh, HistoryIndependentAfterInsertsAndErases) {
                 EXPECT_EQ(tree.canonical_dump(), fresh.canonical_dump()) << what;
                 EXPECT_TRUE(dynamic == oct_mesh(fresh)) << what;
                 if (step == 119) {
-                    EXPECT_TRUE(check_oct_mesh(dynamic).empty()) << what;
+                    EXPECT_TRUE(check_oct_mesh(dynamic).ok()) << what;
                 }
             }
         });
@@ -186,25 +186,25 @@ TEST(OctMesh, CheckerMeasuresTheBoxTheCornersSpan) {
     const std::vector<Vec3> pts{{0.5 + 1.2e-9, 0.25 + 1.3e-9, 0.75 + 1.4e-9},
                                 {0.5 + 1.7e-9, 0.25 + 1.5e-9, 0.75 + 1.8e-9}};
     const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(pts, o));
-    EXPECT_TRUE(check_oct_mesh(mesh).empty()) << joined(check_oct_mesh(mesh));
+    EXPECT_TRUE(check_oct_mesh(mesh).ok()) << joined(check_oct_mesh(mesh).problems);
 }
 
 TEST(OctMesh, CheckerFindsBrokenMeshes) {
     const std::vector<Vec3> pts = {{0.45, 0.5, 0.5}, {0.55, 0.52, 0.49}};
     const OctMesh3 mesh = oct_mesh(DynQuadtree<3>::build(pts));
-    ASSERT_TRUE(check_oct_mesh(mesh).empty());
+    ASSERT_TRUE(check_oct_mesh(mesh).ok());
     OctMesh3 flipped = mesh;
     std::swap(flipped.tets[0][1], flipped.tets[0][2]);
-    EXPECT_FALSE(check_oct_mesh(flipped).empty());
+    EXPECT_FALSE(check_oct_mesh(flipped).ok());
     OctMesh3 missing = mesh;
     missing.tets.pop_back();
-    EXPECT_FALSE(check_oct_mesh(missing).empty());
+    EXPECT_FALSE(check_oct_mesh(missing).ok());
     OctMesh3 doubled = mesh;
     doubled.tets.push_back(mesh.tets.front());
-    EXPECT_FALSE(check_oct_mesh(doubled).empty());
+    EXPECT_FALSE(check_oct_mesh(doubled).ok());
     OctMesh3 out_of_range = mesh;
     out_of_range.tets[0][3] = static_cast<std::uint32_t>(mesh.points.size());
-    EXPECT_FALSE(check_oct_mesh(out_of_range).empty());
+    EXPECT_FALSE(check_oct_mesh(out_of_range).ok());
 }
 
 

@@ -48,7 +48,7 @@ TEST(AdvancingFront, SphereSamples) {
         const auto r = reconstruct_advancing_front_with_report(samples);
         const auto check = check_mesh(r.mesh, {.require_closed = true});
         EXPECT_TRUE(check.ok()) << check.summary("  ");
-        EXPECT_EQ(check.euler, 2);
+        EXPECT_EQ(check.integer("euler"), 2);
         EXPECT_TRUE(r.report.closed);
         EXPECT_GT(test::signed_volume(r.mesh), 0);
         EXPECT_NEAR(test::signed_volume(r.mesh) / (4 * kPi / 3 * 8), 1, 0.02);
@@ -62,8 +62,8 @@ TEST(AdvancingFront, Kitten) {
     const auto r = reconstruct_advancing_front_with_report(samples);
     const auto check = check_mesh(r.mesh, {.require_closed = true});
     EXPECT_TRUE(check.ok()) << check.summary("  ");
-    EXPECT_EQ(check.components, 1u);
-    EXPECT_EQ(check.euler, 0);  // the kitten's tail makes a handle: genus 1
+    EXPECT_EQ(check.integer("components"), 1);
+    EXPECT_EQ(check.integer("euler"), 0);  // the kitten's tail makes a handle: genus 1
     EXPECT_EQ(r.report.unused_samples, 0u);
     EXPECT_GT(test::signed_volume(r.mesh), 0);
     expect_vertices_are_samples(r, samples);
@@ -85,7 +85,7 @@ TEST(AdvancingFront, OpenSurfaceNeedsRequireClosedFalse) {
     EXPECT_TRUE(check.ok()) << check.summary("  ");
     EXPECT_FALSE(r.report.closed);
     EXPECT_GT(r.report.boundary_edges, 0u);
-    EXPECT_LE(check.euler, 1);  // a disc, or an annulus when CGAL leaves a hole at the rim
+    EXPECT_LE(check.integer("euler"), 1);  // a disc, or an annulus when CGAL leaves a hole at the rim
     expect_vertices_are_samples(r, cap);
 }
 

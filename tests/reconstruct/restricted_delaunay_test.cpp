@@ -23,8 +23,8 @@ void expect_valid_rdt(const RestrictedDelaunayResult& r, std::span<const Point3>
                       const ImplicitSurface& surface, long long euler, const std::string& ctx) {
     const auto check = check_mesh(r.mesh, {.require_closed = true});
     EXPECT_TRUE(check.ok()) << ctx << "\n" << check.summary("  ");
-    EXPECT_EQ(check.euler, euler) << ctx;
-    EXPECT_EQ(check.components, 1u) << ctx;
+    EXPECT_EQ(check.integer("euler"), euler) << ctx;
+    EXPECT_EQ(check.integer("components"), 1) << ctx;
     EXPECT_GT(test::signed_volume(r.mesh), 0) << ctx;
     std::size_t inward = 0;
     for (Face f : r.mesh.faces()) {
@@ -98,7 +98,7 @@ TEST(RestrictedDelaunay, PlainCallAndSampleAndMeshAgree) {
     const auto sa = a.to_soup(), sb = b.to_soup();
     EXPECT_TRUE(sa.points == sb.points);
     EXPECT_TRUE(sa.triangles == sb.triangles);
-    EXPECT_EQ(check_mesh(b, {.require_closed = true}).euler, 0);
+    EXPECT_EQ(check_mesh(b, {.require_closed = true}).integer("euler"), 0);
 }
 
 std::string message_of(std::span<const Point3> samples, const ImplicitSurface& s,

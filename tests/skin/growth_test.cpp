@@ -64,7 +64,7 @@ SkinGrowthReport grow_and_check(const GrowthCase& c, SkinSchedule schedule, std:
         co.exempt = snap.exempt;
         co.rho_floor = 0;
         co.max_normal_deviation_deg = 60;
-        const SkinMeshCheck chk = check_skin_mesh(phi, snap.mesh, co);
+        const CheckReport chk = check_skin_mesh(phi, snap.mesh, co);
         std::string problems;
         for (const auto& p : chk.problems) problems += "\n  " + p;
         EXPECT_TRUE(chk.ok()) << c.name << " at t = " << snap.time << problems;

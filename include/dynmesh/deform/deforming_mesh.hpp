@@ -5,7 +5,7 @@
 ///
 /// Usage
 /// \code
-///   DeformParams params;  params.lambda = 1e-3;
+///   DeformOptions params;  params.lambda = 1e-3;
 ///   DeformingMesh dm(P0, params, {.surface = &sphere});   // t = 0
 ///   for (int t = 1; t <= T; ++t) {
 ///       auto step = dm.advance(t, positions_at(t));         // every integer time
@@ -58,7 +58,7 @@ inline constexpr double kPaperKappa = 468.0;
 /// shortest edge, which is >= R/3); justified by the kappa sweep in the README.
 inline constexpr double kPracticalKappa = 32.0;
 
-struct DeformParams {
+struct DeformOptions {
     /// Upper bound on how far any surface point moves in one time unit (> 0, required).
     double lambda = 0;
     /// Step constant: the next step is floor(R / (kappa * lambda)) time units later.
@@ -125,7 +125,7 @@ enum class Violation {
     AddFolded,                  ///< Add would fold the mesh (sparse samples); undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation
     /// A diametric ball holds a vertex once an update's (or the initialisation's) global flips
-    /// are done (DeformParams::verify_balls), or a flip loop stopped at its cap.
+    /// are done (DeformOptions::verify_balls), or a flip loop stopped at its cap.
     NonEmptyBall,
     Rebuild,                    ///< the mesh was rebuilt from scratch to recover
     /// A rebuild was undone: its result was not a closed manifold with the Euler
@@ -165,7 +165,7 @@ struct UpdateCounters {
     [[nodiscard]] std::size_t changes() const { return flips + insertions + removals; }
 };
 
-struct UpdateReport {
+struct DeformUpdateReport {
     int t = 0;
     bool emergency = false;  ///< run because a monitor tripped, not because t was a step
     UpdateCounters counters;
@@ -251,7 +251,7 @@ public:
     ///        sparse to mesh (the initial mesh is not a closed manifold, or, with a
     ///        reference, has not its topology after the refinement rounds), or an inconsistent
     ///        InitialSurface::mesh.
-    DeformingMesh(std::span<const Point3> positions, const DeformParams& params,
+    DeformingMesh(std::span<const Point3> positions, const DeformOptions& params,
                   const InitialSurface& initial = {});
     ~DeformingMesh();
     DeformingMesh(DeformingMesh&&) noexcept;
@@ -268,7 +268,7 @@ public:
     /// MeshUpdate at the current time (the t of the last advance(), or 0): RefineVert,
     /// Insertion of the queued samples, Deletion of the queued ids, next step. May be called
     /// early (correct, but voids the optimality of the schedule).
-    UpdateReport update();
+    DeformUpdateReport update();
 
     /// Queues a new sample at p (current time); returns its id. It joins P at the next update.
     SampleId queue_insertion(const Point3& p);
@@ -278,7 +278,7 @@ public:
     [[nodiscard]] int time() const;
     [[nodiscard]] int next_step() const;
     [[nodiscard]] double lambda() const;
-    [[nodiscard]] const DeformParams& params() const;
+    [[nodiscard]] const DeformOptions& params() const;
 
     [[nodiscard]] const SurfaceMesh& mesh() const;
     /// The sample a mesh vertex is (kNoSample for an invalid vertex).

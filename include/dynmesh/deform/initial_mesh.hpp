@@ -15,7 +15,7 @@
 namespace dynmesh {
 
 struct ReferenceMeshOptions {
-    /// RefineVert's fixed point on the vertex set (DeformParams::init_refine): see
+    /// RefineVert's fixed point on the vertex set (DeformOptions::init_refine): see
     /// initial_mesh_on_reference().
     bool refine = true;
     std::size_t max_refine_rounds = 16;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/deform/deforming_mesh.hpp"
 #include "dynmesh/deform/ground_truth.hpp"
 #include "dynmesh/deform/scenario.hpp"
@@ -39,7 +40,7 @@ struct DeformFrame {
 struct DeformRunOptions {
     Schedule schedule = Schedule::Paper;
     /// kappa, emergency steps, caps (lambda, h0 and horizon come from the scenario).
-    DeformParams params;
+    DeformOptions params;
     /// Shape, normal deviation, inversions and self-intersections are measured at every time
     /// unit; the sampling radius h and the Hausdorff distance (which warp and search the whole
     /// reference) every this many units (and at t = 0 and T). 0: measure nothing but t = 0
@@ -142,11 +143,11 @@ enum class CheckLevel {
 /// "off", "invariants" (or "on", what a bare --check means) or "strict". \throw InvalidInput.
 [[nodiscard]] CheckLevel parse_check_level(std::string_view name);
 
-/// Every reason the run fails `level`, one line each naming the time unit ("t=12: ...") and
-/// the place (triangle or sample ids) where the report has it; empty when it passes (always
-/// for CheckLevel::Off). A kind with more records than the report keeps ends with a line
-/// counting the rest.
-[[nodiscard]] std::vector<std::string> check_failures(const DeformRunReport& report, CheckLevel level);
+/// Every reason the run fails `level` as the report's problems (no figures), one line each
+/// naming the time unit ("t=12: ...") and the place (triangle or sample ids) where the report
+/// has it; ok() when it passes (always for CheckLevel::Off). A kind with more records than
+/// the report keeps ends with a line counting the rest.
+[[nodiscard]] CheckReport check_failures(const DeformRunReport& report, CheckLevel level);
 
 /// Runs the scenario from t = 0 to its horizon.
 DeformRunReport run_deform(const Scenario& scenario, const DeformRunOptions& options = {});

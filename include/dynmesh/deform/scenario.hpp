@@ -9,7 +9,7 @@
 /// \code
 ///   Scenario s = make_scenario("stretch", {.samples = 20000, .steps = 400});
 ///   std::vector<Point3> p0 = pool_positions(s, 0.0, s.initial);   // P(0), SampleId = i
-///   ... DeformParams{.lambda = s.lambda, .h0 = s.h0, .horizon = s.time_units} ...
+///   ... DeformOptions{.lambda = s.lambda, .h0 = s.h0, .horizon = s.time_units} ...
 ///   for (int t = 1; t <= s.time_units; ++t) {
 ///       warp_points(s, t, x0, positions);                          // every live sample
 ///       if (update due && s.edits) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/flips/flip_smooth.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
@@ -44,28 +45,22 @@ struct LocalFlipCheckOptions {
 /// in `after` than the window that flipped them, and in `before` new short edges are
 /// missing. In the union every flip of the run stays within final_m hops, as measured on
 /// worsened spheres with one to three rounds.)
-struct LocalFlipCheck {
-    std::size_t near_faces = 0;         ///< |F|
-    std::size_t flippable_edges = 0;    ///< edges of F flippable under the rule
-    std::size_t illegal_edges = 0;      ///< edges of F that are illegal (Definition 4)
-    std::size_t nonempty_balls = 0;     ///< triangles of F whose shrunken ball holds a vertex
-    std::size_t unchecked_balls = 0;    ///< triangles of F whose ball could not be searched
-    std::size_t far_faces = 0;          ///< far triangles compared with `before`
-    std::size_t far_faces_changed = 0;  ///< far triangles that are not bit-identical
-    std::size_t moved_vertices = 0;     ///< vertices whose position changed (bits)
-    /// One line per violated condition (empty: the check passes): the run did not converge,
-    /// a vertex moved, a far triangle changed, or F has a flippable or illegal edge or a
-    /// non-empty shrunken ball.
-    std::vector<std::string> problems;
-    [[nodiscard]] bool ok() const { return problems.empty(); }
-};
-
+///
+/// Figures (the keys of `dynmesh flip --report`'s check.local_check): near_faces (|F|),
+/// flippable_edges and illegal_edges (edges of F flippable under the rule / illegal by
+/// Definition 4), nonempty_balls (triangles of F whose shrunken ball holds a vertex),
+/// unchecked_balls (... whose ball could not be searched), far_faces (far triangles compared
+/// with `before`), far_faces_changed (... that are not bit-identical), moved_vertices
+/// (vertices whose position changed, bits). Problems: one line per violated condition (the run
+/// did not converge, a vertex moved, a far triangle changed, or F has a flippable or illegal
+/// edge or a non-empty shrunken ball).
+///
 /// Runs the check. The ball test searches every vertex of `after` through a uniform grid,
 /// so a fold from elsewhere on the surface is caught; O(mesh size).
 /// \pre before and after have no garbage. \throw InvalidInput when their element counts
 ///      differ or V names a vertex outside the mesh.
-[[nodiscard]] LocalFlipCheck check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after,
-                                              std::span<const Vertex> V, const LocalFlipReport& report,
-                                              const LocalFlipCheckOptions& options = {});
+[[nodiscard]] CheckReport check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after,
+                                           std::span<const Vertex> V, const LocalFlipReport& report,
+                                           const LocalFlipCheckOptions& options = {});
 
 }  // namespace dynmesh

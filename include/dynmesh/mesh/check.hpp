@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh {
@@ -17,26 +18,12 @@ struct MeshCheckOptions {
     std::size_t max_listed = 50;      ///< problems listed in full; the rest only counted
 };
 
-struct MeshCheckReport {
-    std::vector<std::string> problems;  ///< one line per violation (at most max_listed)
-    std::size_t n_problems = 0;         ///< all violations, including unlisted ones
-    std::size_t vertices = 0, edges = 0, faces = 0;
-    std::size_t boundary_edges = 0;
-    std::size_t isolated_vertices = 0;
-    std::size_t non_manifold_vertices = 0;
-    std::size_t duplicate_edges = 0;
-    std::size_t degenerate_faces = 0;
-    std::size_t components = 0;
-    long long euler = 0;  ///< V - E + F
-    bool closed = false;
-    /// True when the connectivity is a valid oriented 2-manifold (with the options' extras).
-    [[nodiscard]] bool ok() const { return n_problems == 0; }
-    /// All listed problems, one per line, prefixed with `prefix`.
-    [[nodiscard]] std::string summary(const std::string& prefix = "") const;
-};
-
-[[nodiscard]] MeshCheckReport check_mesh(const SurfaceMesh& mesh,
-                                         const MeshCheckOptions& options = {});
+/// Figures (the keys of `dynmesh check --report`): vertices, edges, faces, euler (V − E + F),
+/// closed (no boundary edge), components, boundary_edges, degenerate_faces, and the counts
+/// isolated_vertices, non_manifold_vertices, duplicate_edges. After a broken halfedge
+/// structure only the element counts and euler are measured (the rest stay 0 / false).
+/// ok(): the connectivity is a valid oriented 2-manifold (with the options' extras).
+[[nodiscard]] CheckReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options = {});
 
 /// Throws TopologyError naming `what` and the first problems when check_mesh() fails.
 void require_valid_mesh(const SurfaceMesh& mesh, const std::string& what,

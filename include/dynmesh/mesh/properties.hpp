@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "dynmesh/error.hpp"
+
 namespace dynmesh {
 
 namespace detail {
@@ -73,9 +75,10 @@ public:
     PropertyContainer(PropertyContainer&&) noexcept = default;
     PropertyContainer& operator=(PropertyContainer&&) noexcept = default;
 
+    /// \throw InvalidInput if a property of that name (of any type) is already there.
     template <class T>
     PropertyArray<T>* add(const std::string& name, T default_value) {
-        if (find(name) != nullptr) return nullptr;
+        if (find(name) != nullptr) throw InvalidInput("add property: a property named '" + name + "' already exists");
         auto a = std::make_unique<PropertyArray<T>>(name, std::move(default_value));
         a->resize(size_);
         auto* raw = a.get();

@@ -198,9 +198,14 @@ public:
     [[nodiscard]] bool is_deleted(Edge e) const { return edeleted_[e.idx()]; }
     [[nodiscard]] bool is_deleted(Halfedge h) const { return edeleted_[h.idx() >> 1]; }
     [[nodiscard]] bool is_deleted(Face f) const { return fdeleted_[f.idx()]; }
-    [[nodiscard]] bool is_valid(Vertex v) const { return v.idx() < vdeleted_.size(); }
-    [[nodiscard]] bool is_valid(Edge e) const { return e.idx() < edeleted_.size(); }
-    [[nodiscard]] bool is_valid(Face f) const { return f.idx() < fdeleted_.size(); }
+    /// True when the element is usable: in range and not deleted (a deleted element stays
+    /// in range until garbage_collection()).
+    [[nodiscard]] bool is_valid(Vertex v) const { return v.idx() < vdeleted_.size() && !vdeleted_[v.idx()]; }
+    [[nodiscard]] bool is_valid(Edge e) const { return e.idx() < edeleted_.size() && !edeleted_[e.idx()]; }
+    [[nodiscard]] bool is_valid(Halfedge h) const {
+        return (h.idx() >> 1) < edeleted_.size() && !edeleted_[h.idx() >> 1];
+    }
+    [[nodiscard]] bool is_valid(Face f) const { return f.idx() < fdeleted_.size() && !fdeleted_[f.idx()]; }
     [[nodiscard]] bool is_closed() const;
 
     [[nodiscard]] std::size_t valence(Vertex v) const;
@@ -293,6 +298,10 @@ public:
                  std::span<const std::uint32_t> face_order);
 
     // ---- properties ----------------------------------------------------------------------
+    /// add_*_property: a new property array with `def` for every element.
+    /// \throw InvalidInput if a property of that kind and name (of any type) is already there.
+    /// get_*_property: the property, or an invalid one (is_valid() false) when there is none
+    /// of that name and type.
     template <class T>
     VertexProperty<T> add_vertex_property(const std::string& name, T def = T()) {
         return VertexProperty<T>(vprops_.add<T>(name, std::move(def)));

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/probing/oracle.hpp"
 #include "dynmesh/probing/refine.hpp"
 
@@ -27,27 +28,20 @@ struct ProbingCheckOptions {
     double spacing = 0;
 };
 
-struct ProbingCheckReport {
-    std::vector<std::string> problems;  ///< one line per violation; empty when all hold
-    bool closed_manifold = false;       ///< 2D: disjoint simple closed polygons
-    long long euler = 0;                ///< V − E + F (2D: V − E)
-    std::size_t components = 0;
-    double hausdorff = 0;        ///< two-sided, sampled (lower bound of the true distance)
-    double hausdorff_bound = 0;  ///< 4.5·diam(S)·ε²/ε_S²
-    double sample_gap = 0;       ///< largest distance from a sample of S to the nearest sample (≤ 2ε)
-    double max_ball_radius = 0;  ///< ≤ ε
-    [[nodiscard]] bool ok() const { return problems.empty(); }
-};
-
 /// The default spacing of ProbingCheckOptions: ε/4, coarsened so that S gets at most about
 /// 2e5 samples (area / spacing² in 3D, length / spacing in 2D).
 [[nodiscard]] double default_check_spacing(const GroundTruth& truth, double eps, int dim);
 
 /// Verifies `result` (of probe_surface when dim is 3, probe_curve when dim is 2, run with
-/// `options`) against `truth`.
-[[nodiscard]] ProbingCheckReport check_probing(const ProbingResult& result, const GroundTruth& truth,
-                                               const ProbingOptions& options, int dim,
-                                               const ProbingCheckOptions& check = {});
+/// `options`) against `truth`. Problems: the run's own (ProbingResult::problems), then one
+/// line per violation. Figures (the keys of `dynmesh probe --report`): euler (V − E + F; 2D:
+/// V − E), components, max_ball_radius (≤ ε), hausdorff (two-sided, sampled: a lower bound of
+/// the true distance; 3D: measured only on a closed manifold, else 0), hausdorff_bound
+/// (4.5·diam(S)·ε²/ε_S²), sample_gap (largest distance from a sample of S to the nearest
+/// sample, ≤ 2ε), and the flag closed_manifold (2D: disjoint simple closed polygons).
+[[nodiscard]] CheckReport check_probing(const ProbingResult& result, const GroundTruth& truth,
+                                        const ProbingOptions& options, int dim,
+                                        const ProbingCheckOptions& check = {});
 
 /// The two-sided sampled Hausdorff distance between a triangle mesh and the object's surface:
 /// the mesh sampled at vertices, edge midpoints and barycentres against GroundTruth::distance,

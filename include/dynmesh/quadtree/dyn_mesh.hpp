@@ -49,7 +49,7 @@ using SimplexMeshD = std::conditional_t<D == 2, QuadMesh2, OctMesh3>;
 
 /// What the last insert/erase changed.
 template <int D>
-struct MeshUpdateReport {
+struct QuadMeshUpdateReport {
     QuadtreeUpdateReport<D> tree;       // cells split / merged, crowding and support work
     std::size_t leaves_examined = 0;    // leaves whose code was recomputed
     std::size_t leaves_removed = 0;     // leaves that disappeared (split, or merged away)
@@ -86,7 +86,7 @@ public:
     /// Number of simplices of the current mesh (maintained, O(1)).
     [[nodiscard]] std::size_t simplex_count() const { return live_.simplex_count(); }
     /// The change report of the last successful insert or erase.
-    [[nodiscard]] const MeshUpdateReport<D>& last_update() const { return last_update_; }
+    [[nodiscard]] const QuadMeshUpdateReport<D>& last_update() const { return last_update_; }
     /// The current mesh with stable ids, maintained by every update (see the file comment).
     [[nodiscard]] const LiveMesh<D>& current_mesh() const { return live_; }
     /// What the last successful insert or erase changed in current_mesh(); empty after
@@ -149,7 +149,7 @@ private:
     std::vector<VertexRecord> vertices_;                        // by live vertex id
     std::unordered_map<Lattice, std::uint32_t, LatticeHash> vertex_at_;  // position -> id
     std::vector<std::uint32_t> unused_;                         // vertices whose use fell to 0
-    MeshUpdateReport<D> last_update_;
+    QuadMeshUpdateReport<D> last_update_;
 };
 
 extern template class DynQuadMesh<2>;

@@ -102,9 +102,9 @@ struct OffCenterUpdateReport {
     std::size_t steiner_added = 0;      // Steiner points (incl. boundary midpoints) now present
                                         // that were not before
     std::size_t steiner_removed = 0;    // ... present before and not now
-    std::size_t triangles_added = 0;    // triangles of the canonical mesh that are new (exact:
+    std::size_t simplices_added = 0;    // triangles of the canonical mesh that are new (exact:
                                         // last_change().added_simplices.size())
-    std::size_t triangles_removed = 0;  // ... that disappeared (last_change().removed_simplices)
+    std::size_t simplices_removed = 0;  // ... that disappeared (last_change().removed_simplices)
     std::size_t evaluations = 0;        // creation and processing evaluations (re-)run
     std::size_t rounds_visited = 0;     // distinct rounds (class, index) of those evaluations
     std::size_t queries = 0;            // best-first searches made by those evaluations

@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -78,12 +79,12 @@ struct OctMesh3 {
 ///        tetrahedron, a cell of one grid unit).
 [[nodiscard]] OctMesh3 oct_mesh(const DynQuadtree<3>& tree);
 
-/// Every violated property, one message each; empty when the mesh is valid: indices in range
-/// and distinct, every tetrahedron positively oriented by orient3d (exact), total signed
-/// volume equal to the domain volume (relative tolerance 1e-12), every triangle used by one
-/// tetrahedron (then it lies on a face of the box) or by two with opposite orientations, no
+/// Every violated property, one problem each (no figures); ok() when the mesh is valid: indices
+/// in range and distinct, every tetrahedron positively oriented by orient3d (exact), total
+/// signed volume equal to the domain volume (relative tolerance 1e-12), every triangle used by
+/// one tetrahedron (then it lies on a face of the box) or by two with opposite orientations, no
 /// two vertices at one position, no unused vertex.
-[[nodiscard]] std::vector<std::string> check_oct_mesh(const OctMesh3& mesh);
+[[nodiscard]] CheckReport check_oct_mesh(const OctMesh3& mesh);
 
 struct DihedralRangeDeg {
     double min = 180.0;

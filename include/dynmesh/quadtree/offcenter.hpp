@@ -85,6 +85,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -186,10 +187,10 @@ struct OffCenterKernel {
     [[nodiscard]] Vec2 apex_point(const Vec2& lo, const Vec2& hi, bool cw) const;
 };
 
-/// Throws InvalidInput ("<who>: rho = ... must be finite and > sqrt(2)") unless ρ is valid.
-void check_rho(const OffCenterOptions& options, const char* who);
+/// \throw InvalidInput ("<who>: rho = ... must be finite and > sqrt(2)") unless ρ is valid.
+void require_rho(const OffCenterOptions& options, const char* who);
 /// \throw InvalidInput if the domain is outside the off-center range (file comment, "Range").
-void check_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who);
+void require_offcenter_domain(const QuadtreeOptions<2>& domain, const char* who);
 
 /// Finishes an OffCenterMesh2 whose points (inputs first) and counter-clockwise Delaunay
 /// triangles are set: re-triangulates every degenerate Delaunay cell as a fan from its
@@ -199,11 +200,12 @@ void finish_offcenter_mesh(OffCenterMesh2& mesh);
 
 }  // namespace detail
 
-/// Every violated property, one message each; empty when valid: indices in range, every triangle
-/// counter-clockwise (exact orient2d), every edge shared by two oppositely oriented triangles or
-/// on the box boundary, total area = box area (relative 1e-12), no unused or duplicate vertex,
-/// every input point a vertex, and the empty-circle property (exact incircle: no vertex opposite
-/// an interior edge strictly inside the other triangle's circumcircle).
-[[nodiscard]] std::vector<std::string> check_offcenter_mesh(const OffCenterMesh2& mesh);
+/// Every violated property, one problem each (no figures); ok() when valid: indices in range,
+/// every triangle counter-clockwise (exact orient2d), every edge shared by two oppositely
+/// oriented triangles or on the box boundary, total area = box area (relative 1e-12), no unused
+/// or duplicate vertex, every input point a vertex, and the empty-circle property (exact
+/// incircle: no vertex opposite an interior edge strictly inside the other triangle's
+/// circumcircle).
+[[nodiscard]] CheckReport check_offcenter_mesh(const OffCenterMesh2& mesh);
 
 }  // namespace dynmesh

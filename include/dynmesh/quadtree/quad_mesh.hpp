@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/quadtree/quadtree.hpp"
 
@@ -57,12 +58,12 @@ struct QuadMesh2 {
 /// \throw InternalError if an invariant of the construction fails (star lemma).
 [[nodiscard]] QuadMesh2 quad_mesh(const DynQuadtree<2>& tree);
 
-/// Every violated property, one message each; empty when the mesh is valid: indices in range,
-/// every triangle counter-clockwise by orient2d (exact), total signed area equal to the domain
-/// area (relative tolerance 1e-12), every edge used by one triangle (then it lies on the box
-/// boundary) or by two with opposite directions, no two vertices at one position, no
+/// Every violated property, one problem each (no figures); ok() when the mesh is valid: indices
+/// in range, every triangle counter-clockwise by orient2d (exact), total signed area equal to
+/// the domain area (relative tolerance 1e-12), every edge used by one triangle (then it lies on
+/// the box boundary) or by two with opposite directions, no two vertices at one position, no
 /// unused vertex.
-[[nodiscard]] std::vector<std::string> check_quad_mesh(const QuadMesh2& mesh);
+[[nodiscard]] CheckReport check_quad_mesh(const QuadMesh2& mesh);
 
 struct AngleRangeDeg {
     double min = 180.0;

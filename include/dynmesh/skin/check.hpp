@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 #include "dynmesh/skin/safe_duration.hpp"
 #include "dynmesh/skin/skin_function.hpp"
@@ -23,35 +24,24 @@ struct SkinMeshCheckOptions {
     std::vector<bool> exempt;
 };
 
-struct SkinMeshCheck {
-    std::vector<std::string> problems;  ///< one line each; empty when every invariant holds
-    long long euler = 0;
-    std::size_t components = 0;
-    long long expected_euler = 0;       ///< 2(b0 − b1 + b2) of the alpha complex at t
-    long long expected_components = 0;  ///< b0 + b2
-    double min_angle_deg = 0;           ///< smallest angle of any triangle
-    double angle_floor_deg = 0;         ///< asin(1/Q1²)
-    double frac_angles_below_15 = 0;    ///< share of triangles with an angle under 15°
-    double frac_angles_below_20 = 0;    ///< share of triangles with an angle under 20°
-    double frac_below_floor = 0;        ///< share of triangles with an angle under the floor
-    /// Mesh to skin: the largest distance of a triangle point (10 per triangle) from the skin,
-    /// over ϱ at its foot, and in absolute units.
-    double hausdorff_over_rho_max = 0;
-    double hausdorff_max = 0;
-    double normal_dev_max_deg = 0;      ///< triangle normal against ∇Φ at its projected centroid
-    double normal_dev_mean_deg = 0;
-    double vertex_offset_max = 0;       ///< max |Φ − t|/‖∇Φ‖ over vertices, relative to the extent
-    std::size_t inward_faces = 0;       ///< triangles whose normal opposes ∇Φ
-    std::size_t exempt_faces = 0;       ///< triangles left out of the angle, distance and normal measures
-    [[nodiscard]] bool ok() const { return problems.empty(); }
-};
-
 /// Measures `mesh` against the skin Φ = options.time and lists every violated invariant:
 /// not a closed oriented 2-manifold; Euler characteristic or components unlike the alpha
 /// complex (skin_topology of the input balls); a vertex off the skin; a triangle turned
 /// inward; an angle under asin(1/Q1²); mesh-to-skin distance over (C·Q1)²·ϱ; normal deviation
 /// over the limit.
-[[nodiscard]] SkinMeshCheck check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh,
-                                            const SkinMeshCheckOptions& options = {});
+///
+/// Figures (the keys of `dynmesh skin --report`): euler, components, expected_euler and
+/// expected_components (2(b0 − b1 + b2) and b0 + b2 of the alpha complex at t),
+/// min_angle_deg (smallest angle of any triangle), angle_floor_deg (asin(1/Q1²)),
+/// frac_angles_below_15, frac_angles_below_20, frac_below_floor (shares of triangles with an
+/// angle under 15°, 20°, the floor), exempt_triangles (left out of the angle, distance and
+/// normal measures), hausdorff_over_rho_max and hausdorff_max (mesh to skin: the largest
+/// distance of a triangle point, 10 per triangle, from the skin, over ϱ at its foot and in
+/// absolute units), normal_dev_max_deg and normal_dev_mean_deg (triangle normal against ∇Φ at
+/// its projected centroid); and vertex_offset_max (max |Φ − t|/‖∇Φ‖ over vertices, relative
+/// to the extent) and inward_faces (triangles whose normal opposes ∇Φ), which the CLI does
+/// not write.
+[[nodiscard]] CheckReport check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh,
+                                          const SkinMeshCheckOptions& options = {});
 
 }  // namespace dynmesh
