@@ -72,7 +72,7 @@ void bind_deform(py::module_& m) {
                          std::uint64_t seed) {
                  auto self = std::make_unique<PyDeformingMesh>();
                  const std::vector<Point3> p = points3_of(positions, "positions");
-                 DeformParams params;
+                 DeformOptions params;
                  params.lambda = lambda_;
                  params.kappa = kappa;
                  params.h0 = h0;
@@ -122,7 +122,7 @@ void bind_deform(py::module_& m) {
         .def(
             "update",
             [](PyDeformingMesh& self) {
-                UpdateReport u;
+                DeformUpdateReport u;
                 {
                     py::gil_scoped_release unlocked;
                     u = self.mesh->update();

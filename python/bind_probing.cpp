@@ -8,6 +8,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "dict.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/probing/check.hpp"
 #include "dynmesh/probing/oracles.hpp"
@@ -62,7 +63,7 @@ py::object probe(const std::optional<std::string>& object, const std::optional<D
     o.check_every = check ? 0 : SIZE_MAX;
 
     ProbingResult r;
-    ProbingCheckReport chk;
+    CheckReport chk;
     {
         py::gil_scoped_release unlocked;
         r = dim == 3 ? probe_surface(obj, o) : probe_curve(obj, o);
@@ -86,16 +87,14 @@ py::object probe(const std::optional<std::string>& object, const std::optional<D
     rep["reinitialisations"] = p.reinitialisations;
     rep["vertices"] = p.vertices;
     rep["facets"] = p.facets;
-    rep["euler"] = chk.euler;
-    rep["components"] = chk.components;
+    copy_figures(rep, chk, {"euler", "components"});
     rep["max_ball_radius"] = p.max_ball_radius;
-    rep["hausdorff"] = chk.closed_manifold ? py::object(py::float_(chk.hausdorff)) : py::object(py::none());
-    rep["hausdorff_bound"] = chk.hausdorff_bound;
-    rep["sample_gap"] = chk.sample_gap;
+    copy_figures(rep, chk, {"hausdorff", "hausdorff_bound", "sample_gap"});
+    if (!chk.flag("closed_manifold")) rep["hausdorff"] = py::none();  // measured only on a closed manifold
     rep["seconds"] = p.seconds;
     if (check) {
         py::dict c;
-        c["ok"] = chk.problems.empty();
+        c["ok"] = chk.ok();
         c["problems"] = chk.problems;
         c["segments_checked"] = p.segments_checked;
         rep["check"] = c;

@@ -245,8 +245,8 @@ void bind_offcenter(py::module_& m) {
                 py::dict d;
                 d["steiner_added"] = r.steiner_added;
                 d["steiner_removed"] = r.steiner_removed;
-                d["triangles_added"] = r.triangles_added;
-                d["triangles_removed"] = r.triangles_removed;
+                d["simplices_added"] = r.simplices_added;
+                d["simplices_removed"] = r.simplices_removed;
                 d["evaluations"] = r.evaluations;
                 d["rounds_visited"] = r.rounds_visited;
                 d["queries"] = r.queries;

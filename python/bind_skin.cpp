@@ -7,6 +7,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "dict.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/skin/check.hpp"
 #include "dynmesh/skin/growth.hpp"
@@ -34,21 +35,17 @@ std::vector<Atom> atoms_of(const Doubles& centers, const Doubles& radii) {
 /// The mesh, ϱ at its vertices, and the report fields every skin run shares (`dynmesh skin`).
 py::tuple skin_result(const SkinFunction& phi, const SurfaceMesh& mesh, std::vector<double>&& rho, double rho_floor,
                       const std::vector<bool>& exempt, py::dict rep, std::vector<std::string> problems = {}) {
-    SkinMeshCheck chk;
+    CheckReport chk;
     {
         py::gil_scoped_release unlocked;
         chk = check_skin_mesh(phi, mesh, {.rho_floor = rho_floor, .exempt = exempt});
     }
     rep["vertices"] = mesh.n_vertices();
     rep["triangles"] = mesh.n_faces();
-    rep["euler"] = chk.euler;
-    rep["components"] = chk.components;
-    rep["expected_euler"] = chk.expected_euler;
-    rep["expected_components"] = chk.expected_components;
-    rep["min_angle_deg"] = chk.min_angle_deg;
-    rep["angle_floor_deg"] = chk.angle_floor_deg;
-    rep["hausdorff_over_rho_max"] = chk.hausdorff_over_rho_max;
-    rep["normal_dev_max_deg"] = chk.normal_dev_max_deg;
+    copy_figures(rep, chk,
+                 {"euler", "components", "expected_euler", "expected_components", "min_angle_deg", "angle_floor_deg",
+                  "frac_angles_below_15", "frac_angles_below_20", "frac_below_floor", "exempt_triangles",
+                  "hausdorff_over_rho_max", "hausdorff_max", "normal_dev_max_deg", "normal_dev_mean_deg"});
     py::dict c;
     problems.insert(problems.end(), chk.problems.begin(), chk.problems.end());
     c["ok"] = problems.empty();
