@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -88,6 +90,82 @@ void SurfaceMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
     fprops_.reserve(nf);
 }
 
+namespace {
+
+/// Corner j = 3t + i of a soup is the directed edge tri[i] -> tri[i + 1]. For each corner, the
+/// corner of the opposite direction on the same edge (kInvalid when there is none), when every
+/// edge is used at most once in each direction; nullopt otherwise. Corners are bucketed by the
+/// smaller end of their edge and each bucket sorted by (other end, corner): one pass pairs them.
+std::optional<std::vector<std::uint32_t>> twin_corners(const TriangleSoup& soup) {
+    const std::size_t nc = soup.triangles.size() * 3;
+    const auto ends = [&](std::size_t j) {
+        const auto& t = soup.triangles[j / 3];
+        return std::pair{t[j % 3], t[(j % 3 + 1) % 3]};
+    };
+    std::vector<std::uint32_t> begin(soup.points.size() + 1, 0);
+    for (std::size_t j = 0; j < nc; ++j) {
+        const auto [a, b] = ends(j);
+        ++begin[std::min(a, b) + 1];
+    }
+    std::partial_sum(begin.begin(), begin.end(), begin.begin());
+    struct Entry {
+        std::uint32_t other, corner;
+        bool operator<(const Entry& e) const { return other != e.other ? other < e.other : corner < e.corner; }
+    };
+    std::vector<Entry> entries(nc);
+    {
+        std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+        for (std::size_t j = 0; j < nc; ++j) {
+            const auto [a, b] = ends(j);
+            entries[fill[std::min(a, b)]++] = {std::max(a, b), std::uint32_t(j)};
+        }
+    }
+    std::vector<std::uint32_t> twins(nc, kInvalid);
+    for (std::size_t v = 0; v + 1 < begin.size(); ++v) {
+        const auto first = entries.begin() + begin[v], last = entries.begin() + begin[v + 1];
+        if (last - first <= 16) {  // the usual bucket: a few edges; insertion sort
+            for (auto it = first + 1; it < last; ++it)
+                for (auto k = it; k > first && *k < *(k - 1); --k) std::iter_swap(k, k - 1);
+        } else {
+            std::sort(first, last);
+        }
+        for (auto it = first; it < last;) {
+            auto group = it + 1;
+            while (group < last && group->other == it->other) ++group;
+            if (group - it == 2) {
+                const std::uint32_t j = it->corner, k = (it + 1)->corner;
+                if (ends(j).first == ends(k).first) return std::nullopt;  // one direction twice
+                twins[j] = k;
+                twins[k] = j;
+            } else if (group - it > 2) {
+                return std::nullopt;  // some direction repeats
+            }
+            it = group;
+        }
+    }
+    return twins;
+}
+
+/// Throws the TopologyError naming the first triangle (in soup order) that uses an edge in a
+/// direction an earlier triangle used already (called when twin_corners() found one).
+[[noreturn]] void throw_first_repeated_edge(const TriangleSoup& soup) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> used;
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
+            if (!used.insert({a, b}).second)
+                throw TopologyError("from_soup: triangle " + std::to_string(t) + ": edge (" + std::to_string(a) + ", " +
+                                    std::to_string(b) +
+                                    ") is used twice in the same direction (inconsistent "
+                                    "orientation, or an edge shared by more than two triangles)");
+        }
+    }
+    throw InternalError("from_soup: an edge is used twice in one direction, but no triangle repeats one");
+}
+
+}  // namespace
+
 SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
     SurfaceMesh m;
     const std::size_t nv = soup.points.size();
@@ -111,48 +189,22 @@ SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
             throw InvalidInput(where(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
                                std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
     }
-    // The directed edges (corner j = 3t + i: tri[i] -> tri[i + 1]) listed per source vertex,
-    // each list sorted by (target, corner): the first use of (a, b) is a lower bound in a's list.
+    // The twin of each corner (the corner of the opposite direction of its edge), or the first
+    // triangle that uses an edge twice in one direction.
     const std::size_t nc = soup.triangles.size() * 3;
-    const auto source = [&](std::size_t j) { return soup.triangles[j / 3][j % 3]; };
-    const auto target = [&](std::size_t j) { return soup.triangles[j / 3][(j % 3 + 1) % 3]; };
-    std::vector<std::uint32_t> out_begin(nv + 1, 0);
-    for (std::size_t j = 0; j < nc; ++j) ++out_begin[source(j) + 1];
-    std::partial_sum(out_begin.begin(), out_begin.end(), out_begin.begin());
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> out(nc);  // (target, corner)
-    {
-        std::vector<std::uint32_t> fill(out_begin.begin(), out_begin.end() - 1);
-        for (std::size_t j = 0; j < nc; ++j) out[fill[source(j)]++] = {target(j), std::uint32_t(j)};
-    }
-    for (std::size_t v = 0; v < nv; ++v) std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1]);
-    const auto first_use = [&](std::uint32_t a, std::uint32_t b) {
-        const auto end = out.begin() + out_begin[a + 1];
-        const auto it = std::lower_bound(out.begin() + out_begin[a], end, std::pair{b, std::uint32_t(0)});
-        return it != end && it->first == b ? it->second : kInvalid;
-    };
+    const std::optional<std::vector<std::uint32_t>> twins = twin_corners(soup);
+    if (!twins) throw_first_repeated_edge(soup);
     std::vector<std::uint32_t> corner_halfedge(nc, kInvalid);
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         const auto& tri = soup.triangles[t];
         const Face f = m.new_face();
         std::array<Halfedge, 3> hs;
         for (int i = 0; i < 3; ++i) {
-            const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
             const std::size_t j = 3 * t + std::size_t(i);
-            if (first_use(a, b) < j)
-                throw TopologyError(where(t) + ": edge (" + std::to_string(a) + ", " +
-                                    std::to_string(b) +
-                                    ") is used twice in the same direction (inconsistent "
-                                    "orientation, or an edge shared by more than two triangles)");
-            const std::uint32_t back = first_use(b, a);
-            Halfedge h;
-            if (back < j) {
-                h = twin(Halfedge(corner_halfedge[back]));
-                if (m.hface_[h.idx()] != kInvalid)
-                    throw TopologyError(where(t) + ": edge (" + std::to_string(a) + ", " +
-                                        std::to_string(b) + ") has more than two triangles");
-            } else {
-                h = m.new_edge(Vertex(a), Vertex(b));
-            }
+            const std::uint32_t back = (*twins)[j];
+            // The first corner of an edge creates it; its twin takes the other halfedge.
+            const Halfedge h = back < j ? twin(Halfedge(corner_halfedge[back]))
+                                        : m.new_edge(Vertex(tri[i]), Vertex(tri[(i + 1) % 3]));
             corner_halfedge[j] = h.idx();
             hs[i] = h;
         }
