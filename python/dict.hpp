@@ -13,20 +13,6 @@
 
 namespace dynmesh::python {
 
-/// The quality measures as `dynmesh stats --report` writes them (counts as int, "closed" as
-/// bool, the rest as float).
-inline pybind11::dict quality_dict(const std::vector<std::pair<std::string, double>>& fields) {
-    pybind11::dict d;
-    for (const auto& [name, value] : fields) {
-        switch (quality_field_kind(name)) {
-            case QualityFieldKind::Count: d[pybind11::str(name)] = static_cast<long long>(value); break;
-            case QualityFieldKind::Flag: d[pybind11::str(name)] = value != 0; break;
-            case QualityFieldKind::Real: d[pybind11::str(name)] = value; break;
-        }
-    }
-    return d;
-}
-
 /// A figure of a check with its kind: int, bool or float.
 inline pybind11::object figure_value(const CheckFigure& f) {
     switch (f.kind) {
@@ -50,6 +36,14 @@ inline pybind11::dict check_dict(const CheckReport& check) {
     for (const CheckFigure& f : check.figures) d[pybind11::str(f.name)] = figure_value(f);
     d["ok"] = check.ok();
     d["problems"] = check.problems;
+    return d;
+}
+
+/// The quality measures as `dynmesh stats --report` writes them (counts as int, "closed" as
+/// bool, the rest as float).
+inline pybind11::dict quality_dict(const std::vector<std::pair<std::string, double>>& fields) {
+    pybind11::dict d;
+    for (const auto& [name, value] : fields) d[pybind11::str(name)] = figure_value({name, value, quality_field_kind(name)});
     return d;
 }
 

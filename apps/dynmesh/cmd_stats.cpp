@@ -46,13 +46,9 @@ void run_stats(const StatsArgs& a, RunContext& ctx) {
     const QualityReport q = mesh_quality(mesh, opt);
     nlohmann::json rep = {{"command", "stats"}, {"mesh", a.mesh}};
     if (surface) rep["surface"] = surface->spec();
-    for (const auto& [name, value] : flatten(q)) {
-        switch (quality_field_kind(name)) {
-            case QualityFieldKind::Count: rep[name] = static_cast<long long>(value); break;
-            case QualityFieldKind::Flag: rep[name] = value != 0; break;
-            case QualityFieldKind::Real: rep[name] = value; break;
-        }
-    }
+    CheckReport figures;
+    for (const auto& [name, value] : flatten(q)) figures.figures.push_back({name, value, quality_field_kind(name)});
+    rep.update(check_json(figures));
     if (!a.against.empty()) {
         progress.stage("Hausdorff distance to " + a.against);
         const SurfaceMesh other = load_mesh(a.against);

@@ -126,12 +126,12 @@ QualityReport mesh_quality(const SurfaceMesh& mesh, const QualityOptions& option
     return r;
 }
 
-QualityFieldKind quality_field_kind(std::string_view name) {
+CheckFigure::Kind quality_field_kind(std::string_view name) {
     static constexpr std::array<std::string_view, 7> kCounts = {
         "vertices", "faces", "edges", "euler", "boundary_edges", "degenerate_faces", "self_intersections"};
-    if (name == "closed") return QualityFieldKind::Flag;
-    return std::find(kCounts.begin(), kCounts.end(), name) != kCounts.end() ? QualityFieldKind::Count
-                                                                             : QualityFieldKind::Real;
+    if (name == "closed") return CheckFigure::Kind::Boolean;
+    return std::find(kCounts.begin(), kCounts.end(), name) != kCounts.end() ? CheckFigure::Kind::Integer
+                                                                             : CheckFigure::Kind::Real;
 }
 
 std::vector<std::pair<std::string, double>> flatten(const QualityReport& r) {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 #include "dynmesh/metrics/hausdorff.hpp"
 #include "dynmesh/metrics/histogram.hpp"
@@ -100,10 +101,9 @@ struct QualityReport {
 /// when computed "self_intersections".
 [[nodiscard]] std::vector<std::pair<std::string, double>> flatten(const QualityReport& report);
 
-/// How reports write a field of flatten(): "vertices", "faces", "edges", "euler",
-/// "boundary_edges", "degenerate_faces" and "self_intersections" are counts (integers),
-/// "closed" is a flag (a boolean), the others are real numbers.
-enum class QualityFieldKind { Count, Flag, Real };
-[[nodiscard]] QualityFieldKind quality_field_kind(std::string_view name);
+/// How reports write a field of flatten(), as CheckReport figures are written: "vertices",
+/// "faces", "edges", "euler", "boundary_edges", "degenerate_faces" and "self_intersections" are
+/// Integer, "closed" is Boolean, the others Real.
+[[nodiscard]] CheckFigure::Kind quality_field_kind(std::string_view name);
 
 }  // namespace dynmesh
