@@ -10,6 +10,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "dict.hpp"
 #include "dynmesh/deform/deforming_mesh.hpp"
 #include "dynmesh/error.hpp"
 
@@ -208,24 +209,12 @@ void bind_deform(py::module_& m) {
         .def(
             "check",
             [](const PyDeformingMesh& self, bool self_intersections) {
-                InvariantReport r;
+                CheckReport r;
                 {
                     py::gil_scoped_release unlocked;
                     r = self.get().check_invariants({.self_intersections = self_intersections});
                 }
-                py::dict d;
-                d["ok"] = r.ok;
-                d["problems"] = r.failures;
-                d["R"] = r.R;
-                d["min_spacing"] = r.min_spacing;
-                d["max_radius_edge"] = r.max_radius_edge;
-                d["max_dormant_distance"] = r.max_dormant_distance;
-                d["nonempty_balls"] = r.nonempty_balls;
-                d["self_intersections"] = r.self_intersections;
-                d["samples"] = r.samples;
-                d["vertices"] = r.vertices;
-                d["dormant"] = r.dormant;
-                return d;
+                return check_dict(r);
             },
             py::arg("self_intersections") = true,
             "The paper's invariants (closed manifold with the first mesh's topology, radius-edge\n"

@@ -10,6 +10,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "dict.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/quadtree/domain.hpp"
 #include "dynmesh/quadtree/dyn_mesh.hpp"
@@ -180,13 +181,7 @@ void bind_quad_mesh(py::module_& m, const char* name, const char* doc) {
             "The work of the last update (cells_split and cells_merged as in `dynmesh qmesh --report`).")
         .def(
             "check",
-            [](const Q& q) {
-                py::dict d;
-                const std::vector<std::string> problems = q.check_invariants();
-                d["ok"] = problems.empty();
-                d["problems"] = problems;
-                return d;
-            },
+            [](const Q& q) { return check_dict(q.check_invariants()); },
             "The tree's and the mesh's invariants (balance, conformity, orientation, the mesh\n"
             "equal to a fresh build's): a dict with ok and problems.");
 }
@@ -255,13 +250,7 @@ void bind_offcenter(py::module_& m) {
             "The work of the last update.")
         .def(
             "check",
-            [](const O& o) {
-                py::dict d;
-                const std::vector<std::string> problems = o.check_invariants();
-                d["ok"] = problems.empty();
-                d["problems"] = problems;
-                return d;
-            },
+            [](const O& o) { return check_dict(o.check_invariants()); },
             "The mesh's invariants (Delaunay, radius-edge bound, the mesh equal to a fresh build's):\n"
             "a dict with ok and problems.");
 }

@@ -477,10 +477,10 @@ void run_dim(const QuadtreeArgs& a, const PointSet& input, bool offcenter, Qmesh
     if (a.check) {
         progress.stage("checking");
         // DynQuadMesh's check includes the tree's; DynOffCenterMesh2's does not.
-        std::vector<std::string> bad = dyn ? dyn->check_invariants() : tree.check_invariants();
+        std::vector<std::string> bad = (dyn ? dyn->check_invariants() : tree.check_invariants()).problems;
         if constexpr (D == 2)
             if (off)
-                for (std::string& e : off->check_invariants()) bad.push_back(std::move(e));
+                for (std::string& e : off->check_invariants().problems) bad.push_back(std::move(e));
         for (std::string& s : mesh.problems) bad.push_back(std::move(s));
         rep["check"] = {{"violations", bad.size()}, {"problems", bad}};
         check_problems = std::move(bad);

@@ -1,7 +1,8 @@
 #pragma once
-/// \file CheckReport: what every check_*() function returns. The problems found (listed up to
-/// a cap, all of them counted) and an ordered list of named figures the check measured. The
-/// figure names are the keys under which `dynmesh --report` writes them.
+/// \file CheckReport: what every check_*() function and every check_invariants() member
+/// returns. The problems found (listed up to a cap, all of them counted), an ordered list of
+/// named figures the check measured, and notes: findings reported without failing the check.
+/// The figure names are the keys under which `dynmesh --report` writes them.
 
 #include <concepts>
 #include <cstddef>
@@ -25,6 +26,9 @@ struct CheckReport {
     std::vector<std::string> problems;  ///< one line per violation (possibly capped)
     std::size_t n_problems = 0;         ///< all violations, including unlisted ones
     std::vector<CheckFigure> figures;   ///< in the order the check added them
+    /// Findings reported without failing the check (e.g. a soft finding the check's options
+    /// let pass), one line each. They do not count as problems and do not affect ok().
+    std::vector<std::string> notes;
 
     /// Records a figure: bool as Boolean, integers as Integer (exact below 2^53), floating
     /// point as Real. \throw InvalidInput if a figure of that name is already there.

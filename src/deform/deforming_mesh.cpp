@@ -973,10 +973,10 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformOpti
         InvariantOptions io;
         io.self_intersections = false;
         io.empty_balls_soft = true;
-        const InvariantReport inv = check_invariants(io);
-        I.init.invariant_failures = inv.failures;
-        I.init.nonempty_balls = inv.nonempty_balls;
-        I.init.first_nonempty_ball = inv.first_nonempty_ball;
+        const CheckReport inv = check_invariants(io);
+        I.init.invariant_failures = inv.problems;
+        I.init.nonempty_balls = static_cast<std::size_t>(inv.integer("nonempty_balls"));
+        I.init.first_nonempty_ball = inv.notes.empty() ? std::string() : inv.notes.front();
     }
     I.init.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     I.pending_violations.clear();
@@ -1155,22 +1155,21 @@ std::size_t DeformingMesh::updates() const { return impl_->n_updates; }
 
 // ---- invariants -----------------------------------------------------------------------------
 
-InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options) const {
+CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) const {
     const Impl& I = *impl_;
-    InvariantReport r;
-    auto fail = [&](std::string s) {
-        r.ok = false;
-        if (r.failures.size() < 50) r.failures.push_back(std::move(s));
-    };
+    CheckReport r;
+    auto fail = [&](std::string s) { r.fail(std::move(s), 50); };
+    // The figures, added at the end in this order.
+    double R = 0, min_spacing = 0, max_radius_edge = 0, max_dormant_distance = 0;
+    std::size_t nonempty_balls = 0, self_intersections = 0, samples = 0, vertices = 0, dormant = 0;
     const auto mc = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
     if (!mc.ok()) fail("mesh: " + mc.summary());
     if (mc.integer("euler") != I.euler)
         fail("Euler characteristic " + std::to_string(mc.integer("euler")) + " != " + std::to_string(I.euler) + " at t = 0");
     if (static_cast<std::size_t>(mc.integer("components")) != I.components)
         fail(std::to_string(mc.integer("components")) + " components != " + std::to_string(I.components) + " at t = 0");
-    r.vertices = I.mesh.n_vertices();
-    r.R = I.max_circumradius();
-    const double R = r.R;
+    vertices = I.mesh.n_vertices();
+    R = I.max_circumradius();
     // sample states and the mesh agree
     for (Vertex v : I.mesh.vertices()) {
         const SampleId s = I.sid(v);
@@ -1191,62 +1190,72 @@ InvariantReport DeformingMesh::check_invariants(const InvariantOptions& options)
             }
             in_lists += I.dl[s].size();
         } else if (I.state[s] == State::Dormant) {
-            ++r.dormant;
+            ++dormant;
             const SampleId o = I.owner[s];
             if (o >= I.pos.size() || I.state[o] != State::Vertex) {
                 fail(I.idstr(s) + " is dormant but its owner is not a vertex");
                 continue;
             }
             const double d = distance(I.pos[s], I.pos[o]);
-            r.max_dormant_distance = std::max(r.max_dormant_distance, d);
+            max_dormant_distance = std::max(max_dormant_distance, d);
             if (d > options.dormant_factor * R)
                 fail(I.idstr(s) + " is " + std::to_string(d / R) + " R from its owner " + I.idstr(o));
         }
-        if (I.state[s] == State::Vertex || I.state[s] == State::Dormant) ++r.samples;
+        if (I.state[s] == State::Vertex || I.state[s] == State::Dormant) ++samples;
     }
-    if (in_lists != r.dormant)
-        fail("dormant lists hold " + std::to_string(in_lists) + " samples but " + std::to_string(r.dormant) +
+    if (in_lists != dormant)
+        fail("dormant lists hold " + std::to_string(in_lists) + " samples but " + std::to_string(dormant) +
              " samples are dormant");
     // triangle shape
     for (Face f : I.mesh.faces()) {
         const auto vs = I.mesh.face_vertices(f);
         const double re = radius_edge_ratio(I.mesh.position(vs[0]), I.mesh.position(vs[1]), I.mesh.position(vs[2]));
-        r.max_radius_edge = std::max(r.max_radius_edge, re);
+        max_radius_edge = std::max(max_radius_edge, re);
         if (!(re <= options.radius_edge_bound))
             fail("triangle " + I.face_str(f) + " has radius-edge ratio " + std::to_string(re));
     }
     // spacing and empty balls
     if (R > 0) {
         PointGrid g = I.vertex_grid(R);
-        r.min_spacing = std::numeric_limits<double>::infinity();
+        min_spacing = std::numeric_limits<double>::infinity();
         for (Vertex v : I.mesh.vertices()) {
             const SampleId s = I.sid(v);
             g.for_each_candidate(I.pos[s], R, [&](std::uint32_t w) {
                 if (w == s) return;
                 const double d = distance(I.pos[w], I.pos[s]);
-                r.min_spacing = std::min(r.min_spacing, d);
+                min_spacing = std::min(min_spacing, d);
                 if (I.ext[w] > I.ext[s] && d < options.spacing_factor * R)
                     fail("vertices " + I.idstr(s) + " and " + I.idstr(w) + " are " + std::to_string(d / R) + " R apart");
             });
         }
         if (options.empty_balls) {
             const auto b = I.scan_balls(g);
-            r.nonempty_balls = b.count;
+            nonempty_balls = b.count;
             if (b.count > 0) {
-                r.first_nonempty_ball = "the diametric ball of triangle " + I.face_str(b.first) + " holds " +
-                                        std::to_string(b.first_hits) + " vertices (e.g. " + I.idstr(b.inside) + ")";
-                if (!options.empty_balls_soft) {
-                    fail(r.first_nonempty_ball);
+                std::string first = "the diametric ball of triangle " + I.face_str(b.first) + " holds " +
+                                    std::to_string(b.first_hits) + " vertices (e.g. " + I.idstr(b.inside) + ")";
+                if (options.empty_balls_soft) {
+                    r.notes.push_back(std::move(first));
+                } else {
+                    fail(std::move(first));
                     if (b.count > 1) fail(std::to_string(b.count) + " diametric balls hold vertices in all");
                 }
             }
         }
     }
     if (options.self_intersections) {
-        r.self_intersections = count_self_intersections(I.mesh);
-        if (r.self_intersections > 0)
-            fail(std::to_string(r.self_intersections) + " pairs of triangles intersect");
+        self_intersections = count_self_intersections(I.mesh);
+        if (self_intersections > 0) fail(std::to_string(self_intersections) + " pairs of triangles intersect");
     }
+    r.add("R", R);
+    r.add("min_spacing", min_spacing);
+    r.add("max_radius_edge", max_radius_edge);
+    r.add("max_dormant_distance", max_dormant_distance);
+    r.add("nonempty_balls", nonempty_balls);
+    r.add("self_intersections", self_intersections);
+    r.add("samples", samples);
+    r.add("vertices", vertices);
+    r.add("dormant", dormant);
     return r;
 }
 

@@ -197,16 +197,17 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                 InvariantOptions io;
                 io.self_intersections = false;  // measured at every unit below
                 io.empty_balls_soft = true;
-                const InvariantReport inv = dm.check_invariants(io);
-                rep.nonempty_balls_max = std::max(rep.nonempty_balls_max, inv.nonempty_balls);
-                rep.nonempty_balls_total += inv.nonempty_balls;
-                if (inv.nonempty_balls > 0 && rep.updates_with_nonempty_balls++ < 10)
-                    rep.first_nonempty_balls.push_back("t=" + std::to_string(t) + ": " + inv.first_nonempty_ball + " (" +
-                                                       std::to_string(inv.nonempty_balls) + " such triangles)");
-                if (!inv.ok) {
+                const CheckReport inv = dm.check_invariants(io);
+                const auto nonempty_balls = static_cast<std::size_t>(inv.integer("nonempty_balls"));
+                rep.nonempty_balls_max = std::max(rep.nonempty_balls_max, nonempty_balls);
+                rep.nonempty_balls_total += nonempty_balls;
+                if (nonempty_balls > 0 && rep.updates_with_nonempty_balls++ < 10)
+                    rep.first_nonempty_balls.push_back("t=" + std::to_string(t) + ": " + inv.notes.front() + " (" +
+                                                       std::to_string(nonempty_balls) + " such triangles)");
+                if (!inv.ok()) {
                     ++rep.invariant_failures;
                     if (rep.first_invariant_failures.size() < 10)
-                        rep.first_invariant_failures.push_back("t=" + std::to_string(t) + ": " + inv.failures.front());
+                        rep.first_invariant_failures.push_back("t=" + std::to_string(t) + ": " + inv.problems.front());
                 }
             }
         }

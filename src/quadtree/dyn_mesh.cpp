@@ -322,8 +322,8 @@ std::string DynQuadMesh<D>::canonical_dump() const {
 }
 
 template <int D>
-std::vector<std::string> DynQuadMesh<D>::check_invariants() const {
-    std::vector<std::string> bad = tree_.check_invariants();
+CheckReport DynQuadMesh<D>::check_invariants() const {
+    std::vector<std::string> bad = tree_.check_invariants().problems;
     const auto leaves = tree_.leaves();
     if (leaves_.size() != leaves.size())
         bad.push_back("mesh holds codes for " + std::to_string(leaves_.size()) +
@@ -399,7 +399,7 @@ std::vector<std::string> DynQuadMesh<D>::check_invariants() const {
         bad.push_back("live vertex count " + std::to_string(live_.vertex_count()) +
                       " differs from the records");
 
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 template class DynQuadMesh<2>;

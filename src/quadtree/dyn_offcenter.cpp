@@ -1599,7 +1599,7 @@ OffCenterMesh2 DynOffCenterMesh2::mesh() const {
     return out;
 }
 
-std::vector<std::string> DynOffCenterMesh2::check_invariants() const {
+CheckReport DynOffCenterMesh2::check_invariants() const {
     std::vector<std::string> bad;
     const Impl& m = *impl_;
     // Stored counts and indices.
@@ -1706,7 +1706,7 @@ std::vector<std::string> DynOffCenterMesh2::check_invariants() const {
         a.apex_offcenters != b.apex_offcenters || a.circumcentres != b.circumcentres ||
         a.rounds != b.rounds || a.stuck_pairs != b.stuck_pairs)
         bad.push_back("mesh counters differ from offcenter_mesh()");
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 }  // namespace dynmesh

@@ -774,7 +774,7 @@ std::string DynQuadtree<D>::canonical_dump() const {
 }
 
 template <int D>
-std::vector<std::string> DynQuadtree<D>::check_invariants() const {
+CheckReport DynQuadtree<D>::check_invariants() const {
     std::vector<std::string> bad;
     auto name = [](const Key& k) {
         std::string s = "cell (level " + std::to_string(k.level) + ";";
@@ -924,7 +924,7 @@ std::vector<std::string> DynQuadtree<D>::check_invariants() const {
     }
     for (const auto& [x, n] : nodes_)
         if (n.is_leaf && is_crowded(x)) bad.push_back(name(x) + ": crowded leaf (rule C)");
-    return bad;
+    return CheckReport::of_problems(std::move(bad));
 }
 
 template class DynQuadtree<2>;

@@ -86,8 +86,8 @@ TEST(DeformInit, VertexNetDormantListsAndRestrictedDelaunayBound) {
     // Tri(0) is the RDT (then globally Delaunay-flipped): R(0) <= 2 h0.
     EXPECT_LE(ir.R0, 2 * h0);
     const auto inv = dm.check_invariants(cheap_checks());
-    EXPECT_TRUE(inv.ok) << (inv.failures.empty() ? "" : inv.failures.front());
-    EXPECT_EQ(inv.samples, P.size());
+    EXPECT_TRUE(inv.ok()) << inv.summary();
+    EXPECT_EQ(inv.integer("samples"), std::ssize(P));
     // First step: floor(R / (kappa lambda)).
     EXPECT_EQ(dm.next_step(), static_cast<int>(std::floor(ir.R0 / (params.kappa * params.lambda))));
     EXPECT_EQ(ir.init_insertions, 0u);
@@ -99,7 +99,7 @@ TEST(DeformInit, VertexNetDormantListsAndRestrictedDelaunayBound) {
     InvariantOptions strict;
     strict.dormant_factor = 1.0 / 3.0;
     const auto inv2 = refined.check_invariants(strict);
-    EXPECT_TRUE(inv2.ok) << (inv2.failures.empty() ? "" : inv2.failures.front());
+    EXPECT_TRUE(inv2.ok()) << inv2.summary();
     EXPECT_GE(refined.init_report().vertices, ir.vertices);
 }
 
@@ -155,16 +155,17 @@ PulseRun run_stretch(const std::vector<Point3>& P0, int T, bool every_step, doub
             io.self_intersections = (t % 10 == 0);
             io.empty_balls = false;
             const auto inv = dm.check_invariants(io);
-            if (!inv.ok) out.failures.push_back("t=" + std::to_string(t) + " invariants: " + inv.failures.front());
+            if (!inv.ok()) out.failures.push_back("t=" + std::to_string(t) + " invariants: " + inv.problems.front());
             // A diametric ball can stay non-empty where a flip was refused (the circumradius
             // guard, an existing diagonal; spec §9 P9) at sparse spots: rare, never many.
             io.empty_balls = true;
             io.self_intersections = false;
             const auto balls = dm.check_invariants(io);
-            if (balls.nonempty_balls > 2)
-                out.failures.push_back("t=" + std::to_string(t) + " " + std::to_string(balls.nonempty_balls) +
+            const auto nonempty_balls = static_cast<std::size_t>(balls.integer("nonempty_balls"));
+            if (nonempty_balls > 2)
+                out.failures.push_back("t=" + std::to_string(t) + " " + std::to_string(nonempty_balls) +
                                        " non-empty diametric balls");
-            out.nonempty += balls.nonempty_balls;
+            out.nonempty += nonempty_balls;
             out.refusals += u.counters.flip_refusals;
             if (t < T) {
                 EXPECT_EQ(u.next_step - t,
@@ -227,8 +228,8 @@ TEST(DeformEdits, InsertionsFarAndNearAndDeletingHalfTheVertices) {
     EXPECT_EQ(u.counters.samples_inserted, ids.size());
     EXPECT_NE(dm.owner_of(ids[0]), kNoSample) << "a sample next to a vertex becomes dormant";
     auto inv = dm.check_invariants();
-    EXPECT_TRUE(inv.ok) << inv.failures.front();
-    EXPECT_EQ(inv.samples, pos.size());
+    EXPECT_TRUE(inv.ok()) << inv.summary();
+    EXPECT_EQ(inv.integer("samples"), std::ssize(pos));
 
     // Delete half of the vertices (every other one by id) and some dormant samples.
     std::vector<SampleId> verts;
@@ -247,8 +248,8 @@ TEST(DeformEdits, InsertionsFarAndNearAndDeletingHalfTheVertices) {
     EXPECT_EQ(u.counters.samples_deleted, deleted);
     for (std::size_t i = 0; i < verts.size(); i += 2) EXPECT_FALSE(dm.is_live(verts[i]));
     inv = dm.check_invariants();
-    EXPECT_TRUE(inv.ok) << inv.failures.front();
-    EXPECT_EQ(inv.samples, pos.size() - deleted);
+    EXPECT_TRUE(inv.ok()) << inv.summary();
+    EXPECT_EQ(inv.integer("samples"), std::ssize(pos) - static_cast<long long>(deleted));
     EXPECT_EQ(dm.live_samples(), pos.size() - deleted);
     EXPECT_GT(dm.mesh().n_vertices(), nv / 4);
 }
@@ -326,7 +327,7 @@ TEST(DeformMonitors, TooFastMotionIsReportedAndRecovered) {
     EXPECT_TRUE(st.emergency);
     dm.update();
     const auto inv = dm.check_invariants();
-    EXPECT_TRUE(inv.ok) << inv.failures.front();
+    EXPECT_TRUE(inv.ok()) << inv.summary();
 }
 
 TEST(DeformMonitors, InvertedTrianglesAreDetectedAndTheMeshRebuilt) {

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
@@ -200,19 +201,6 @@ struct InvariantOptions {
     double dormant_factor = 1.25;       ///< every dormant point within dormant_factor * R
 };
 
-struct InvariantReport {
-    bool ok = true;
-    std::vector<std::string> failures;  ///< one line per failed check (with a location)
-    double R = 0;                       ///< largest circumradius
-    double min_spacing = 0;             ///< shortest vertex-vertex distance
-    double max_radius_edge = 0;
-    double max_dormant_distance = 0;    ///< over dormant points, distance to the owner
-    std::size_t nonempty_balls = 0;
-    std::string first_nonempty_ball;    ///< the first such triangle and a vertex in its ball
-    std::size_t self_intersections = 0;
-    std::size_t samples = 0, vertices = 0, dormant = 0;
-};
-
 struct InitReport {
     double h0 = 0;
     bool h0_estimated = false;
@@ -302,7 +290,14 @@ public:
     /// validity (closed oriented manifold, Euler characteristic and components unchanged), radius-edge
     /// ratios, spacing >= R/3, dormant lists partition P \ Vert with every dormant point
     /// within 5R/4 of its owner, empty diametric balls, no self-intersection.
-    [[nodiscard]] InvariantReport check_invariants(const InvariantOptions& options = {}) const;
+    /// Problems: one line per failed check, with a location (the first 50 listed, all counted).
+    /// Figures, always all of them in this order: R (largest circumradius), min_spacing
+    /// (shortest vertex-vertex distance, 0 when R is 0), max_radius_edge,
+    /// max_dormant_distance (over dormant samples, the distance to the owner), and as
+    /// Integer: nonempty_balls, self_intersections (0 when not tested), samples (vertices and
+    /// dormant), vertices, dormant. Notes: with empty_balls_soft, the first non-empty
+    /// diametric ball (its triangle and a vertex in it) when there is one.
+    [[nodiscard]] CheckReport check_invariants(const InvariantOptions& options = {}) const;
 
 private:
     struct Impl;

@@ -100,12 +100,12 @@ public:
     /// mesh's vertices (hexadecimal floats, exact) and simplices in canonical order. Equal point
     /// sets over equal domains give byte-identical dumps, whatever the history of updates.
     [[nodiscard]] std::string canonical_dump() const;
-    /// Every violated invariant: the tree's (check_invariants), one stored code per leaf and
-    /// no other, every stored code equal to its recomputation, the live mesh (vertex use
-    /// counts, one vertex per lattice position, each leaf's block holding the simplices its
-    /// code gives, at their positions: then the live simplices are mesh()'s). Empty when
-    /// valid. O(size).
-    [[nodiscard]] std::vector<std::string> check_invariants() const;
+    /// Every violated invariant, one problem each: the tree's (check_invariants), one stored
+    /// code per leaf and no other, every stored code equal to its recomputation, the live mesh
+    /// (vertex use counts, one vertex per lattice position, each leaf's block holding the
+    /// simplices its code gives, at their positions: then the live simplices are mesh()'s).
+    /// ok() when valid; no figure. O(size).
+    [[nodiscard]] CheckReport check_invariants() const;
 
 private:
     using Lattice = std::array<std::uint64_t, D>;

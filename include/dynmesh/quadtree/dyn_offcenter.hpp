@@ -90,6 +90,7 @@
 #include <string>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
 #include "dynmesh/quadtree/live_mesh.hpp"
 #include "dynmesh/quadtree/offcenter.hpp"
@@ -156,11 +157,11 @@ public:
     /// construction and build().
     [[nodiscard]] const MeshDelta<2>& last_change() const;
 
-    /// Every violated invariant, one message each; empty when the state is valid. Compares the
-    /// stored trace (vertices with stamps and kinds, candidates, outcomes), the triangulation and
-    /// mesh() with a from-scratch build and with offcenter_mesh(), and checks the spatial
-    /// indices. O((n + m) log(n + m)).
-    [[nodiscard]] std::vector<std::string> check_invariants() const;
+    /// Every violated invariant, one problem each (ok() when the state is valid; no figure).
+    /// Compares the stored trace (vertices with stamps and kinds, candidates, outcomes), the
+    /// triangulation and mesh() with a from-scratch build and with offcenter_mesh(), and checks
+    /// the spatial indices. O((n + m) log(n + m)).
+    [[nodiscard]] CheckReport check_invariants() const;
 
 private:
     struct Impl;

@@ -51,6 +51,7 @@
 #include <utility>
 #include <vector>
 
+#include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
 
 namespace dynmesh {
@@ -203,12 +204,13 @@ public:
     /// (level, index) with the grid coordinates of its point if it holds one. Equal point sets
     /// (up to snapping) over equal domains give byte-identical dumps, whatever the history.
     [[nodiscard]] std::string canonical_dump() const;
-    /// Every violated invariant, one message each; empty when the tree is valid. Checks the tree
-    /// structure and counts, every point in exactly one leaf, no crowded and no unbalanced leaf
-    /// in the sense of spec §1.3 (leaf neighbours, size ratio < 4), and the local certificate of
-    /// spec §3.4 (closure under C, A, B; stored crowding flags and supports equal their
-    /// recomputation, every internal cell has positive support). O(cells).
-    [[nodiscard]] std::vector<std::string> check_invariants() const;
+    /// Every violated invariant, one problem each (ok() when the tree is valid; no figure).
+    /// Checks the tree structure and counts, every point in exactly one leaf, no crowded and no
+    /// unbalanced leaf in the sense of spec §1.3 (leaf neighbours, size ratio < 4), and the
+    /// local certificate of spec §3.4 (closure under C, A, B; stored crowding flags and
+    /// supports equal their recomputation, every internal cell has positive support).
+    /// O(cells).
+    [[nodiscard]] CheckReport check_invariants() const;
 
 private:
     struct Key {
