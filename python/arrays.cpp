@@ -15,14 +15,14 @@ void require_shape(const py::array& a, const char* what, const char* rows, py::s
 namespace {
 
 template <class P, int D>
-std::vector<P> points_of(const Doubles& a, const char* what) {
+std::vector<P> points_of(const Doubles& a, const char* what, bool finite) {
     require_shape(a, what, "n", D);
     const auto v = a.unchecked<2>();
     std::vector<P> out(std::size_t(v.shape(0)));
     for (py::ssize_t i = 0; i < v.shape(0); ++i) {
         for (int k = 0; k < D; ++k) {
             const double x = v(i, k);
-            if (!std::isfinite(x))
+            if (finite && !std::isfinite(x))
                 throw InvalidInput(std::string(what) + ": point " + std::to_string(i) + " has a coordinate that is not finite");
             out[std::size_t(i)][std::size_t(k)] = x;
         }
@@ -31,27 +31,45 @@ std::vector<P> points_of(const Doubles& a, const char* what) {
 }
 
 template <class P, int D>
-P point_of(const Doubles& a, const char* what) {
+P point_of(const Doubles& a, const char* what, bool finite) {
     if (a.ndim() != 1 || a.shape(0) != D)
         throw InvalidInput(std::string(what) + " must be a sequence of " + std::to_string(D) + " numbers");
     P p{};
     for (int k = 0; k < D; ++k) {
         p[std::size_t(k)] = a.at(k);
-        if (!std::isfinite(p[std::size_t(k)])) throw InvalidInput(std::string(what) + " has a coordinate that is not finite");
+        if (finite && !std::isfinite(p[std::size_t(k)]))
+            throw InvalidInput(std::string(what) + " has a coordinate that is not finite");
     }
     return p;
 }
 
 }  // namespace
 
-std::vector<Point3> points3_of(const Doubles& a, const char* what) { return points_of<Point3, 3>(a, what); }
-std::vector<Vec2> points2_of(const Doubles& a, const char* what) { return points_of<Vec2, 2>(a, what); }
-Point3 point3_of(const Doubles& a, const char* what) { return point_of<Point3, 3>(a, what); }
-Vec2 point2_of(const Doubles& a, const char* what) { return point_of<Vec2, 2>(a, what); }
+std::vector<Point3> points3_of(const Doubles& a, const char* what, bool finite) {
+    return points_of<Point3, 3>(a, what, finite);
+}
+std::vector<Vec2> points2_of(const Doubles& a, const char* what, bool finite) {
+    return points_of<Vec2, 2>(a, what, finite);
+}
+Point3 point3_of(const Doubles& a, const char* what, bool finite) { return point_of<Point3, 3>(a, what, finite); }
+Vec2 point2_of(const Doubles& a, const char* what, bool finite) { return point_of<Vec2, 2>(a, what, finite); }
 
-SurfaceMesh mesh_of(const Doubles& vertices, const Indices& faces) {
+Indices indices_of(const py::array& a, const char* what) {
+    const char kind = a.dtype().kind();
+    if (kind != 'i' && kind != 'u' && a.size() > 0)
+        throw InvalidInput(std::string(what) + " must be an array of integers, not of dtype " +
+                           std::string(py::str(a.dtype())));
+    return Indices::ensure(a);
+}
+
+SurfaceMesh mesh_of(const Doubles& vertices, const py::array& faces) {
+    return SurfaceMesh::from_soup(soup_of(points3_of(vertices, "vertices"), faces));
+}
+
+TriangleSoup soup_of(std::vector<Point3> points, const py::array& face_array) {
     TriangleSoup soup;
-    soup.points = points3_of(vertices, "vertices");
+    soup.points = std::move(points);
+    const Indices faces = indices_of(face_array, "faces");
     require_shape(faces, "faces", "m", 3);
     const auto f = faces.unchecked<2>();
     const auto n = std::int64_t(soup.points.size());
@@ -67,7 +85,7 @@ SurfaceMesh mesh_of(const Doubles& vertices, const Indices& faces) {
         }
         soup.triangles.push_back(t);
     }
-    return SurfaceMesh::from_soup(soup);
+    return soup;
 }
 
 Indices faces_of(const SurfaceMesh& mesh) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/mesh/surface_mesh.hpp"
 
 namespace dynmesh::python {
@@ -24,16 +25,23 @@ using Indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcec
 /// An InvalidInput unless `a` has shape (rows, cols).
 void require_shape(const py::array& a, const char* what, const char* rows, py::ssize_t cols);
 
-/// The points of an (n, 3) array (finite coordinates).
-[[nodiscard]] std::vector<Point3> points3_of(const Doubles& a, const char* what);
-/// The points of an (n, 2) array (finite coordinates).
-[[nodiscard]] std::vector<Vec2> points2_of(const Doubles& a, const char* what);
-/// One point of a sequence of `D` numbers.
-[[nodiscard]] Point3 point3_of(const Doubles& a, const char* what);
-[[nodiscard]] Vec2 point2_of(const Doubles& a, const char* what);
+/// The points of an (n, 3) array; with `finite`, every coordinate must be finite (else the
+/// library checks the points it uses).
+[[nodiscard]] std::vector<Point3> points3_of(const Doubles& a, const char* what, bool finite = true);
+/// The points of an (n, 2) array, as points3_of.
+[[nodiscard]] std::vector<Vec2> points2_of(const Doubles& a, const char* what, bool finite = true);
+/// One point of a sequence of `D` numbers, as points3_of.
+[[nodiscard]] Point3 point3_of(const Doubles& a, const char* what, bool finite = true);
+[[nodiscard]] Vec2 point2_of(const Doubles& a, const char* what, bool finite = true);
+
+/// An integer array as int64 (a float array is refused rather than truncated).
+[[nodiscard]] Indices indices_of(const py::array& a, const char* what);
+
+/// The triangle soup of the arrays (checked: shapes, integer faces, indices in range).
+[[nodiscard]] TriangleSoup soup_of(std::vector<Point3> points, const py::array& faces);
 
 /// The mesh of the arrays (checked: shapes, finite coordinates, indices in range, a manifold).
-[[nodiscard]] SurfaceMesh mesh_of(const Doubles& vertices, const Indices& faces);
+[[nodiscard]] SurfaceMesh mesh_of(const Doubles& vertices, const py::array& faces);
 
 /// The arrays of a mesh without garbage (vertices (n, 3), faces (m, 3), corners from the tail
 /// of each face's halfedge: the order the faces were given in).

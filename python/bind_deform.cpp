@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "bindings.hpp"
 #include "dict.hpp"
 #include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/deform/run.hpp"
 #include "dynmesh/error.hpp"
 
 namespace dynmesh::python {
@@ -30,7 +32,7 @@ py::list violations_list(const std::vector<ViolationRecord>& records) {
     return out;
 }
 
-/// The work counters with the column names of the CLI's per-time-unit log (deform's log.csv).
+/// The work counters under the names of the CLI's deform report and log.csv.
 void put_counters(py::dict& d, const UpdateCounters& c) {
     d["flips"] = c.flips;
     d["insertions"] = c.insertions;
@@ -41,20 +43,40 @@ void put_counters(py::dict& d, const UpdateCounters& c) {
     d["rebuilds"] = c.rebuilds;
     d["rollbacks"] = c.rollbacks;
     d["flip_refusals"] = c.flip_refusals;
-    d["update_seconds"] = c.seconds;
+}
+
+/// The violations by kind, as `dynmesh deform --report` counts them.
+py::dict violations_by_kind(const std::vector<ViolationRecord>& records) {
+    py::dict d;
+    for (const ViolationRecord& v : records) {
+        const py::str kind(std::string(to_string(v.kind)));
+        d[kind] = (d.contains(kind) ? d[kind].cast<std::size_t>() : 0) + 1;
+    }
+    return d;
+}
+
+/// The first kViolationExamples records of each kind (the report's violation_examples).
+std::vector<ViolationRecord> examples_of(const std::vector<ViolationRecord>& records) {
+    std::map<Violation, std::size_t> seen;
+    std::vector<ViolationRecord> out;
+    for (const ViolationRecord& v : records)
+        if (seen[v.kind]++ < kViolationExamples) out.push_back(v);
+    return out;
 }
 
 /// The Python object: the library's DeformingMesh and the reference mesh it was started on.
+/// Its methods keep the GIL: two threads never change one object at once.
 struct PyDeformingMesh {
     std::unique_ptr<SurfaceMesh> reference;
     std::unique_ptr<DeformingMesh> mesh;
-    std::size_t samples = 0;
 
     const DeformingMesh& get() const { return *mesh; }
 };
 
+/// The position table of advance(): finiteness is checked by the library for live samples
+/// only (rows of deleted ids may hold anything, NaN included).
 std::vector<Point3> positions_of(const Doubles& positions, std::size_t at_least) {
-    std::vector<Point3> p = points3_of(positions, "positions");
+    std::vector<Point3> p = points3_of(positions, "positions", false);
     if (p.size() < at_least)
         throw InvalidInput("positions has " + std::to_string(p.size()) + " rows; every sample id up to " +
                            std::to_string(at_least - 1) + " needs one");
@@ -69,7 +91,7 @@ void bind_deform(py::module_& m) {
                                 "time steps (Cheng & Dey). Time is discrete: call advance(t, positions) for\n"
                                 "t = 1, 2, ... and update() when it says update_due.")
         .def(py::init([](const Doubles& positions, double lambda_, double kappa, std::optional<double> h0,
-                         std::optional<int> horizon, std::optional<Indices> reference_faces, bool emergency_steps,
+                         std::optional<int> horizon, std::optional<py::array> reference_faces, bool emergency_steps,
                          std::uint64_t seed) {
                  auto self = std::make_unique<PyDeformingMesh>();
                  const std::vector<Point3> p = points3_of(positions, "positions");
@@ -82,11 +104,10 @@ void bind_deform(py::module_& m) {
                  params.seed = seed;
                  InitialSurface initial;
                  if (reference_faces) {
-                     self->reference = std::make_unique<SurfaceMesh>(mesh_of(positions, *reference_faces));
+                     self->reference = std::make_unique<SurfaceMesh>(SurfaceMesh::from_soup(soup_of(p, *reference_faces)));
                      initial.reference = self->reference.get();
                  }
-                 self->samples = p.size();
-                 py::gil_scoped_release unlocked;
+                 py::gil_scoped_release unlocked;  // the object is not visible to Python yet
                  self->mesh = std::make_unique<DeformingMesh>(p, params, initial);
                  return self;
              }),
@@ -103,11 +124,7 @@ void bind_deform(py::module_& m) {
             "advance",
             [](PyDeformingMesh& self, int t, const Doubles& positions) {
                 const std::vector<Point3> p = positions_of(positions, self.get().id_capacity());
-                StepReport s;
-                {
-                    py::gil_scoped_release unlocked;
-                    s = self.mesh->advance(t, p);
-                }
+                const StepReport s = self.mesh->advance(t, p);
                 py::dict d;
                 d["t"] = s.t;
                 d["update_due"] = s.update_due;
@@ -123,15 +140,12 @@ void bind_deform(py::module_& m) {
         .def(
             "update",
             [](PyDeformingMesh& self) {
-                DeformUpdateReport u;
-                {
-                    py::gil_scoped_release unlocked;
-                    u = self.mesh->update();
-                }
+                const DeformUpdateReport u = self.mesh->update();
                 py::dict d;
                 d["t"] = u.t;
                 d["emergency"] = u.emergency;
                 put_counters(d, u.counters);
+                d["update_seconds"] = u.counters.seconds;
                 d["R_before"] = u.R_before;
                 d["R_after"] = u.R_after;
                 d["next_step"] = u.next_step;
@@ -201,20 +215,15 @@ void bind_deform(py::module_& m) {
                 d["seconds_updates"] = dm.totals().seconds;
                 d["samples"] = dm.live_samples();
                 d["vertices"] = dm.mesh().n_vertices();
-                d["violations"] = dm.violations().size();
-                d["violation_examples"] = violations_list(dm.violations());
+                d["violations"] = violations_by_kind(dm.violations());
+                d["violation_examples"] = violations_list(examples_of(dm.violations()));
                 return d;
             },
             "Totals over all updates so far (the field names of `dynmesh deform --report`).")
         .def(
             "check",
             [](const PyDeformingMesh& self, bool self_intersections) {
-                CheckReport r;
-                {
-                    py::gil_scoped_release unlocked;
-                    r = self.get().check_invariants({.self_intersections = self_intersections});
-                }
-                return check_dict(r);
+                return check_dict(self.get().check_invariants({.self_intersections = self_intersections}));
             },
             py::arg("self_intersections") = true,
             "The paper's invariants (closed manifold with the first mesh's topology, radius-edge\n"

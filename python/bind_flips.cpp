@@ -21,18 +21,19 @@ namespace dynmesh::python {
 
 namespace {
 
-/// The vertices of local mode: indices into the mesh's vertices (unique, in range).
-std::vector<Vertex> local_vertices(const Indices& around, const SurfaceMesh& mesh) {
-    if (around.ndim() != 1) throw InvalidInput("around must be a 1-D array of vertex indices");
+/// The vertices of local mode: indices into the mesh's vertices (in range; at least one;
+/// repeats kept, as `dynmesh flip --vertices` keeps them).
+std::vector<Vertex> local_vertices(const py::array& given, const SurfaceMesh& mesh) {
+    const Indices around = indices_of(given, "around");
+    if (around.ndim() != 1 || around.size() == 0)
+        throw InvalidInput("around must be a non-empty 1-D array of vertex indices");
     std::vector<Vertex> V;
-    std::vector<char> seen(mesh.n_vertices(), 0);
     const auto a = around.unchecked<1>();
     for (py::ssize_t i = 0; i < a.shape(0); ++i) {
         const std::int64_t v = a(i);
         if (v < 0 || std::size_t(v) >= mesh.n_vertices())
             throw InvalidInput("around[" + std::to_string(i) + "] = " + std::to_string(v) + " is not a vertex index in [0, " +
                                std::to_string(mesh.n_vertices()) + ")");
-        if (seen[std::size_t(v)]++) continue;
         V.push_back(Vertex(std::uint32_t(v)));
     }
     return V;
@@ -43,8 +44,8 @@ std::vector<Vertex> local_vertices(const Indices& around, const SurfaceMesh& mes
 void bind_flips(py::module_& m) {
     m.def(
         "flip",
-        [](const Doubles& vertices, const Indices& faces, const std::string& criterion, double feature_angle_deg,
-           std::optional<Indices> around) {
+        [](const Doubles& vertices, const py::array& faces, const std::string& criterion, double feature_angle_deg,
+           std::optional<py::array> around) {
             SurfaceMesh mesh = mesh_of(vertices, faces);
             const FlipRule rule = parse_flip_rule(criterion);
             FlipReport r;
@@ -98,7 +99,7 @@ void bind_flips(py::module_& m) {
 
     m.def(
         "worsen",
-        [](const Doubles& vertices, const Indices& faces, std::size_t rounds, double probability,
+        [](const Doubles& vertices, const py::array& faces, std::size_t rounds, double probability,
            double min_dihedral_deg, std::uint64_t seed) {
             SurfaceMesh mesh = mesh_of(vertices, faces);
             WorsenReport r;
@@ -129,7 +130,7 @@ void bind_flips(py::module_& m) {
 
     m.def(
         "quality",
-        [](const Doubles& vertices, const Indices& faces, bool self_intersections) {
+        [](const Doubles& vertices, const py::array& faces, bool self_intersections) {
             const SurfaceMesh mesh = mesh_of(vertices, faces);
             QualityReport q;
             {

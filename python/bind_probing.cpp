@@ -19,7 +19,7 @@ namespace dynmesh::python {
 namespace {
 
 py::object probe(const std::optional<std::string>& object, const std::optional<Doubles>& vertices,
-                 const std::optional<Indices>& faces, std::optional<double> eps, std::optional<double> delta,
+                 const std::optional<py::array>& faces, std::optional<double> eps, std::optional<double> delta,
                  std::optional<double> eps_S, int dim, const std::string& mode, const std::string& positioning,
                  bool check) {
     if (dim != 2 && dim != 3) throw InvalidInput("dim must be 2 or 3, not " + std::to_string(dim));
@@ -32,26 +32,26 @@ py::object probe(const std::optional<std::string>& object, const std::optional<D
 
     ProbeSetup setup;
     if (object) {
+        py::gil_scoped_release unlocked;  // reads a file, or checks a mesh
         setup = make_probe_object(*object);
     } else {
-        TriangleSoup soup;
-        soup.points = points3_of(*vertices, "vertices");
-        require_shape(*faces, "faces", "m", 3);
-        const SurfaceMesh mesh = mesh_of(*vertices, *faces);  // checks the indices
-        for (Face f : mesh.faces()) {
-            const Halfedge h = mesh.halfedge(f);
-            soup.triangles.push_back({mesh.from_vertex(h).idx(), mesh.to_vertex(h).idx(),
-                                      mesh.to_vertex(mesh.next(h)).idx()});
-        }
+        const TriangleSoup soup = soup_of(points3_of(*vertices, "vertices"), *faces);
+        py::gil_scoped_release unlocked;
         setup = make_probe_object(soup, "the mesh");
     }
+    if (setup.planar != (dim == 2))
+        throw InvalidInput(setup.planar ? "dim=2 is for planar curves; " + setup.spec + " is one: pass dim=2"
+                                        : "dim=2 needs a planar curve (circle2:R or star2:R), not " + setup.spec);
     const ProbeObject& obj = *setup.object;
     ProbingOptions o;
     o.omega = setup.omega;
     o.interior_points = setup.interior_points;
-    if (eps_S)
+    if (eps_S) {
         o.eps_S = *eps_S;
-    else if (obj.reach() > 0)
+        if (obj.reach() > 0 && o.eps_S > obj.reach() * (1 + 1e-12))
+            throw InvalidInput("eps_S = " + std::to_string(o.eps_S) + " exceeds the reach of " + setup.spec + ", " +
+                               std::to_string(obj.reach()) + ": it must be a lower bound of the reach");
+    } else if (obj.reach() > 0)
         o.eps_S = obj.reach();
     else
         throw InvalidInput("eps_S is required (a polyhedron has no reach to take it from)");
@@ -99,7 +99,7 @@ py::object probe(const std::optional<std::string>& object, const std::optional<D
         c["segments_checked"] = p.segments_checked;
         rep["check"] = c;
     }
-    py::array sample = adopt<double, 3>(std::vector<Point3>(r.sample));
+    py::array sample = adopt<double, 3>(std::move(r.sample));
     py::array points = adopt<double, 3>(std::move(r.mesh.points));
     if (dim == 3)
         return py::make_tuple(sample, points, adopt<std::uint32_t, 3>(std::move(r.mesh.triangles)), rep);

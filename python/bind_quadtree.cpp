@@ -32,12 +32,14 @@ const char* name_of(InsertResult r) {
 }
 const char* name_of(EraseResult r) { return r == EraseResult::Erased ? "erased" : "not_found"; }
 
+/// A point argument; with finite = false a NaN or infinite coordinate is left for the
+/// library to refuse (insert: 'not_finite'; erase: 'not_found').
 template <int D>
-PointD<D> point_of(const Doubles& a) {
+PointD<D> point_of(const Doubles& a, const char* what = "p", bool finite = true) {
     if constexpr (D == 2)
-        return point2_of(a, "p");
+        return point2_of(a, what, finite);
     else
-        return point3_of(a, "p");
+        return point3_of(a, what, finite);
 }
 
 template <int D>
@@ -58,7 +60,7 @@ QuadtreeOptions<D> domain_of(const std::vector<PointD<D>>& points, const std::op
         throw InvalidInput("without points, give the box: origin and width (the automatic box needs points)");
     QuadtreeOptions<D> o = origin ? QuadtreeOptions<D>{} : auto_domain<D>(points);
     if (origin) {
-        o.origin = point_of<D>(*origin);
+        o.origin = point_of<D>(*origin, "origin");
         o.width = *width;
         if (!(std::isfinite(o.width) && o.width > 0)) throw InvalidInput("width must be a positive number");
     }
@@ -136,10 +138,10 @@ void bind_quad_mesh(py::module_& m, const char* name, const char* doc) {
              "mode: 'paper' (the paper's balanced tree) or 'mesh' (graded for quality meshing).\n"
              "points: built at once (the same mesh as inserting them one by one).")
         .def(
-            "insert", [](Q& q, const Doubles& p) { return name_of(q.insert(point_of<D>(p))); }, py::arg("p"),
+            "insert", [](Q& q, const Doubles& p) { return name_of(q.insert(point_of<D>(p, "p", false))); }, py::arg("p"),
             "Inserts a point: 'inserted', 'duplicate', 'outside_domain', 'not_finite' or 'beyond_precision'.")
         .def(
-            "erase", [](Q& q, const Doubles& p) { return name_of(q.erase(point_of<D>(p))); }, py::arg("p"),
+            "erase", [](Q& q, const Doubles& p) { return name_of(q.erase(point_of<D>(p, "p", false))); }, py::arg("p"),
             "Erases a point: 'erased' or 'not_found'.")
         .def("__len__", &Q::size)
         .def(
@@ -206,19 +208,11 @@ void bind_offcenter(py::module_& m) {
              "rho: the radius-edge bound (> sqrt 2). use_offcenters=False: circumcentres only.")
         .def(
             "insert",
-            [](O& o, const Doubles& p) {
-                const Vec2 q = point2_of(p, "p");
-                py::gil_scoped_release unlocked;
-                return name_of(o.insert(q));
-            },
+            [](O& o, const Doubles& p) { return name_of(o.insert(point2_of(p, "p", false))); },
             py::arg("p"), "Inserts a point: 'inserted', 'duplicate', 'outside_domain', 'not_finite' or 'beyond_precision'.")
         .def(
             "erase",
-            [](O& o, const Doubles& p) {
-                const Vec2 q = point2_of(p, "p");
-                py::gil_scoped_release unlocked;
-                return name_of(o.erase(q));
-            },
+            [](O& o, const Doubles& p) { return name_of(o.erase(point2_of(p, "p", false))); },
             py::arg("p"), "Erases a point: 'erased' or 'not_found'.")
         .def("__len__", [](const O& o) { return o.tree().size(); })
         .def(

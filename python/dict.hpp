@@ -30,12 +30,15 @@ inline void copy_figures(pybind11::dict& d, const CheckReport& check, std::initi
             if (f.name == name) d[pybind11::str(name)] = figure_value(f);
 }
 
-/// A check as a dict: every figure, then ok and problems.
+/// A check as a dict: every figure, then ok, problems (the listed ones), n_problems (all of
+/// them) and notes (findings that do not fail the check).
 inline pybind11::dict check_dict(const CheckReport& check) {
     pybind11::dict d;
     for (const CheckFigure& f : check.figures) d[pybind11::str(f.name)] = figure_value(f);
     d["ok"] = check.ok();
     d["problems"] = check.problems;
+    d["n_problems"] = check.n_problems;
+    d["notes"] = check.notes;
     return d;
 }
 

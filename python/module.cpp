@@ -55,11 +55,12 @@ PYBIND11_MODULE(dynmesh, m) {
         },
         py::arg("path"),
         "Reads a closed or open triangle mesh (.off .obj .ply .stl); returns (vertices, faces).\n"
-        "Raises OSError when the file cannot be read, ValueError when it is malformed.");
+        "Raises OSError when the file cannot be read or is malformed (naming the file and line),\n"
+        "ValueError when its triangles do not form an oriented manifold.");
 
     m.def(
         "write_mesh",
-        [](const std::string& path, const Doubles& vertices, const Indices& faces) {
+        [](const std::string& path, const Doubles& vertices, const py::array& faces) {
             const SurfaceMesh mesh = mesh_of(vertices, faces);
             py::gil_scoped_release unlocked;
             write_mesh(mesh, path);

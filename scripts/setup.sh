@@ -33,24 +33,9 @@ dynmesh_build() {
     ln -sf build/release/compile_commands.json compile_commands.json 2>/dev/null || true
 }
 
-# Makes `/usr/bin/python3 -c "import dynmesh"` find this build's module: a dynmesh.pth in the
-# user site directory of /usr/bin/python3 names build/release/python (the last set-up run wins;
-# `cmake --install` puts the module in a prefix instead).
-dynmesh_python_path() {
-    local module_dir="$DYNMESH_ROOT/build/release/python"
-    local site_dir
-    site_dir="$(/usr/bin/python3 -c 'import site; print(site.getusersitepackages() if site.ENABLE_USER_SITE else "")')"
-    if [ -z "$site_dir" ]; then
-        echo "setup: the user site directory of /usr/bin/python3 is disabled; use PYTHONPATH=$module_dir"
-        return
-    fi
-    mkdir -p "$site_dir"
-    printf '%s\n' "$module_dir" > "$site_dir/dynmesh.pth"
-    echo "setup: /usr/bin/python3 imports dynmesh from $module_dir (via $site_dir/dynmesh.pth)"
-}
-
 dynmesh_install_packages
 dynmesh_build
-dynmesh_python_path
+# `/usr/bin/python3 -c "import dynmesh"` finds this build's module from anywhere.
+bash "$DYNMESH_ROOT/scripts/python_path.sh" "$DYNMESH_ROOT/build/release/python"
 DYNMESH_BIN="$DYNMESH_ROOT/build/release/bin/dynmesh"
 export DYNMESH_ROOT DYNMESH_BIN

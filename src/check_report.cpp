@@ -30,7 +30,7 @@ bool CheckReport::has(std::string_view name) const {
 const CheckFigure& CheckReport::find(std::string_view name, const char* who) const {
     for (const CheckFigure& f : figures)
         if (f.name == name) return f;
-    throw InvalidInput(std::string("CheckReport::") + who + ": no figure '" + std::string(name) + "'");
+    throw InternalError(std::string("CheckReport::") + who + ": no figure '" + std::string(name) + "'");
 }
 
 double CheckReport::figure(std::string_view name) const { return find(name, "figure").value; }
@@ -38,14 +38,14 @@ double CheckReport::figure(std::string_view name) const { return find(name, "fig
 long long CheckReport::integer(std::string_view name) const {
     const CheckFigure& f = find(name, "integer");
     if (f.kind != CheckFigure::Kind::Integer)
-        throw InvalidInput("CheckReport::integer: the figure '" + f.name + "' is not an integer");
+        throw InternalError("CheckReport::integer: the figure '" + f.name + "' is not an integer");
     return static_cast<long long>(f.value);
 }
 
 bool CheckReport::flag(std::string_view name) const {
     const CheckFigure& f = find(name, "flag");
     if (f.kind != CheckFigure::Kind::Boolean)
-        throw InvalidInput("CheckReport::flag: the figure '" + f.name + "' is not a flag");
+        throw InternalError("CheckReport::flag: the figure '" + f.name + "' is not a flag");
     return f.value != 0;
 }
 

@@ -48,12 +48,12 @@ struct CheckReport {
     /// Records a problem: counted always, listed while fewer than `max_listed` are.
     void fail(std::string problem, std::size_t max_listed = static_cast<std::size_t>(-1));
 
-    /// The figure's value (a Boolean is 0 or 1). \throw InvalidInput for an unknown name.
+    /// The figure's value (a Boolean is 0 or 1). \throw InternalError for an unknown name (a caller's bug).
     [[nodiscard]] double figure(std::string_view name) const;
-    /// An Integer figure as an integer. \throw InvalidInput for an unknown name or a figure
+    /// An Integer figure as an integer. \throw InternalError for an unknown name or a figure
     ///        of another kind.
     [[nodiscard]] long long integer(std::string_view name) const;
-    /// A Boolean figure. \throw InvalidInput for an unknown name or a figure of another kind.
+    /// A Boolean figure. \throw InternalError for an unknown name or a figure of another kind.
     [[nodiscard]] bool flag(std::string_view name) const;
     /// True when the check recorded a figure of that name.
     [[nodiscard]] bool has(std::string_view name) const;

@@ -202,7 +202,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                 rep.nonempty_balls_max = std::max(rep.nonempty_balls_max, nonempty_balls);
                 rep.nonempty_balls_total += nonempty_balls;
                 if (nonempty_balls > 0 && rep.updates_with_nonempty_balls++ < 10)
-                    rep.first_nonempty_balls.push_back("t=" + std::to_string(t) + ": " + inv.notes.front() + " (" +
+                    rep.first_nonempty_balls.push_back("t=" + std::to_string(t) + ": " + (inv.notes.empty() ? "" : inv.notes.front()) + " (" +
                                                        std::to_string(nonempty_balls) + " such triangles)");
                 if (!inv.ok()) {
                     ++rep.invariant_failures;

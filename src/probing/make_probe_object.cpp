@@ -102,6 +102,7 @@ ProbeSetup make_probe_object(const std::string& spec, OracleOptions options) {
             o = std::make_unique<StarOracle2>(Point2{0, 0}, r, options);
         out.interior_points = {o->interior_point()};
         out.omega = o->default_omega();
+        out.planar = true;
         out.object = std::move(o);
     } else if (spec == "genus2") {
         out.object = std::make_unique<Genus2Oracle>(options);

@@ -249,6 +249,7 @@ struct ProbeSetup {
     std::vector<Point3> interior_points;  ///< one per component of O (assumption A1)
     Ball omega;                           ///< contains S with a margin (assumption A2)
     std::string spec;                     ///< the spec it was built from
+    bool planar = false;                  ///< a curve in the plane z = 0 (probe_curve), not a surface
 };
 
 /// Builds the object of `spec`: "sphere:R", "ellipsoid:a,b,c", "torus:R,r" (with the
