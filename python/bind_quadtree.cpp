@@ -119,11 +119,38 @@ constexpr const char* kCurrentDoc =
     "The live mesh slot by slot, ids as last_change() uses them: (points (slots, D) with NaN\n"
     "rows for free slots, simplices (slots, D + 1) with -1 rows for free slots).";
 
+/// The canonical mesh as arrays that adopt the library's vectors.
+template <int D, std::size_t K>
+py::tuple mesh_tuple(std::vector<PointD<D>>&& points, std::vector<std::array<std::uint32_t, K>>&& simplices,
+                     std::vector<std::uint32_t>&& input_vertices) {
+    return py::make_tuple(adopt<double, D>(std::move(points)), adopt<std::uint32_t, K>(std::move(simplices)),
+                          adopt_flat(std::move(input_vertices)));
+}
+
+/// The methods every dynamic mesh has: insert, erase, current_mesh, last_change, check.
+template <int D, class M>
+void bind_updates(py::class_<M>& c) {
+    c.def(
+         "insert", [](M& m, const Doubles& p) { return name_of(m.insert(point_of<D>(p, "p", false))); }, py::arg("p"),
+         "Inserts a point: 'inserted', 'duplicate', 'outside_domain', 'not_finite' or 'beyond_precision'.")
+        .def(
+            "erase", [](M& m, const Doubles& p) { return name_of(m.erase(point_of<D>(p, "p", false))); }, py::arg("p"),
+            "Erases a point: 'erased' or 'not_found'.")
+        .def("current_mesh", [](const M& m) { return live_arrays<D>(m.current_mesh()); }, kCurrentDoc)
+        .def("last_change", [](const M& m) { return change_dict<D>(m.last_change()); }, kChangeDoc)
+        .def(
+            "check", [](const M& m) { return check_dict(m.check_invariants()); },
+            "The invariants (for the quadtree meshes: balance, conformity, orientation; for the\n"
+            "off-center mesh: Delaunay, the radius-edge bound), and the mesh equal to a fresh\n"
+            "build's: a dict with ok, problems, n_problems and notes.");
+}
+
 template <int D>
 void bind_quad_mesh(py::module_& m, const char* name, const char* doc) {
     using Q = DynQuadMesh<D>;
-    py::class_<Q>(m, name, doc)
-        .def(py::init([](std::optional<Doubles> points, std::optional<Doubles> origin, std::optional<double> width,
+    py::class_<Q> c(m, name, doc);
+    bind_updates<D>(c);
+    c.def(py::init([](std::optional<Doubles> points, std::optional<Doubles> origin, std::optional<double> width,
                          const std::string& mode) {
                  const std::vector<PointD<D>> p = points ? points_of<D>(*points) : std::vector<PointD<D>>{};
                  const QuadtreeOptions<D> domain = domain_of<D>(p, origin, width, mode);
@@ -137,30 +164,18 @@ void bind_quad_mesh(py::module_& m, const char* name, const char* doc) {
              "points, as `dynmesh qmesh --domain auto`); points must lie in its middle third.\n"
              "mode: 'paper' (the paper's balanced tree) or 'mesh' (graded for quality meshing).\n"
              "points: built at once (the same mesh as inserting them one by one).")
-        .def(
-            "insert", [](Q& q, const Doubles& p) { return name_of(q.insert(point_of<D>(p, "p", false))); }, py::arg("p"),
-            "Inserts a point: 'inserted', 'duplicate', 'outside_domain', 'not_finite' or 'beyond_precision'.")
-        .def(
-            "erase", [](Q& q, const Doubles& p) { return name_of(q.erase(point_of<D>(p, "p", false))); }, py::arg("p"),
-            "Erases a point: 'erased' or 'not_found'.")
         .def("__len__", &Q::size)
         .def(
             "mesh",
             [](const Q& q) {
                 auto mesh = q.mesh();
                 if constexpr (D == 2)
-                    return py::make_tuple(adopt<double, 2>(std::move(mesh.points)),
-                                          adopt<std::uint32_t, 3>(std::move(mesh.triangles)),
-                                          adopt_flat(std::move(mesh.input_vertices)));
+                    return mesh_tuple<2>(std::move(mesh.points), std::move(mesh.triangles), std::move(mesh.input_vertices));
                 else
-                    return py::make_tuple(adopt<double, 3>(std::move(mesh.points)),
-                                          adopt<std::uint32_t, 4>(std::move(mesh.tets)),
-                                          adopt_flat(std::move(mesh.input_vertices)));
+                    return mesh_tuple<3>(std::move(mesh.points), std::move(mesh.tets), std::move(mesh.input_vertices));
             },
             "The canonical mesh (identical after any sequence of updates to a fresh build):\n"
             "(points (k, D), simplices (m, D + 1), input_vertices: the vertex of each stored point).")
-        .def("current_mesh", [](const Q& q) { return live_arrays<D>(q.current_mesh()); }, kCurrentDoc)
-        .def("last_change", [](const Q& q) { return change_dict<D>(q.last_change()); }, kChangeDoc)
         .def(
             "last_update",
             [](const Q& q) {
@@ -180,20 +195,16 @@ void bind_quad_mesh(py::module_& m, const char* name, const char* doc) {
                 d["vertices_added"] = r.vertices_added;
                 return d;
             },
-            "The work of the last update (cells_split and cells_merged as in `dynmesh qmesh --report`).")
-        .def(
-            "check",
-            [](const Q& q) { return check_dict(q.check_invariants()); },
-            "The tree's and the mesh's invariants (balance, conformity, orientation, the mesh\n"
-            "equal to a fresh build's): a dict with ok and problems.");
+            "The work of the last update (cells_split and cells_merged as in `dynmesh qmesh --report`).");
 }
 
 void bind_offcenter(py::module_& m) {
     using O = DynOffCenterMesh2;
-    py::class_<O>(m, "DynOffCenterMesh2",
-                  "An off-center Delaunay mesh of a 2D point set (radius-edge ratio at most rho) kept\n"
-                  "under insertions and deletions, identical to a fresh build after any sequence.")
-        .def(py::init([](std::optional<Doubles> points, std::optional<Doubles> origin, std::optional<double> width,
+    py::class_<O> c(m, "DynOffCenterMesh2",
+                    "An off-center Delaunay mesh of a 2D point set (radius-edge ratio at most rho) kept\n"
+                    "under insertions and deletions, identical to a fresh build after any sequence.");
+    bind_updates<2>(c);
+    c.def(py::init([](std::optional<Doubles> points, std::optional<Doubles> origin, std::optional<double> width,
                          double rho, bool use_offcenters) {
                  const std::vector<Vec2> p = points ? points2_of(*points, "points") : std::vector<Vec2>{};
                  const QuadtreeOptions<2> domain = domain_of<2>(p, origin, width, "paper");
@@ -206,27 +217,15 @@ void bind_offcenter(py::module_& m) {
              "The domain is the square [origin, origin + width]^2 (default: the automatic box of the\n"
              "points); points must lie in its middle third.\n"
              "rho: the radius-edge bound (> sqrt 2). use_offcenters=False: circumcentres only.")
-        .def(
-            "insert",
-            [](O& o, const Doubles& p) { return name_of(o.insert(point2_of(p, "p", false))); },
-            py::arg("p"), "Inserts a point: 'inserted', 'duplicate', 'outside_domain', 'not_finite' or 'beyond_precision'.")
-        .def(
-            "erase",
-            [](O& o, const Doubles& p) { return name_of(o.erase(point2_of(p, "p", false))); },
-            py::arg("p"), "Erases a point: 'erased' or 'not_found'.")
         .def("__len__", [](const O& o) { return o.tree().size(); })
         .def(
             "mesh",
             [](const O& o) {
                 OffCenterMesh2 mesh = o.mesh();
-                return py::make_tuple(adopt<double, 2>(std::move(mesh.points)),
-                                      adopt<std::uint32_t, 3>(std::move(mesh.triangles)),
-                                      adopt_flat(std::move(mesh.input_vertices)));
+                return mesh_tuple<2>(std::move(mesh.points), std::move(mesh.triangles), std::move(mesh.input_vertices));
             },
             "The canonical mesh: (points (k, 2): the input points, then the Steiner points sorted,\n"
             "triangles (m, 3) counter-clockwise, input_vertices: the vertex of each stored point).")
-        .def("current_mesh", [](const O& o) { return live_arrays<2>(o.current_mesh()); }, kCurrentDoc)
-        .def("last_change", [](const O& o) { return change_dict<2>(o.last_change()); }, kChangeDoc)
         .def(
             "last_update",
             [](const O& o) {
@@ -241,12 +240,7 @@ void bind_offcenter(py::module_& m) {
                 d["queries"] = r.queries;
                 return d;
             },
-            "The work of the last update.")
-        .def(
-            "check",
-            [](const O& o) { return check_dict(o.check_invariants()); },
-            "The mesh's invariants (Delaunay, radius-edge bound, the mesh equal to a fresh build's):\n"
-            "a dict with ok and problems.");
+            "The work of the last update.");
 }
 
 }  // namespace

@@ -141,8 +141,7 @@ CheckReport check_local_flip(const SurfaceMesh& before, const SurfaceMesh& after
     problem(out.flippable_edges, "flippable edges in F (triangles within 1 hop of V)");
     problem(out.illegal_edges, "illegal edges in F");
     problem(out.nonempty_balls, "triangles of F whose shrunken diametric ball holds a vertex");
-    CheckReport rep;
-    for (std::string& p : out.problems) rep.fail(std::move(p));
+    CheckReport rep = CheckReport::of_problems(std::move(out.problems));
     rep.add("near_faces", out.near_faces);
     rep.add("flippable_edges", out.flippable_edges);
     rep.add("illegal_edges", out.illegal_edges);

@@ -238,8 +238,7 @@ CheckReport check_probing(const ProbingResult& r, const GroundTruth& truth, cons
     if (out.hausdorff > out.hausdorff_bound)
         fail("Hausdorff distance " + std::to_string(out.hausdorff) + " exceeds the bound 4.5 diam eps^2 / eps_S^2 = " +
              std::to_string(out.hausdorff_bound));
-    CheckReport rep;
-    for (std::string& p : out.problems) rep.fail(std::move(p));
+    CheckReport rep = CheckReport::of_problems(std::move(out.problems));
     rep.add("euler", out.euler);
     rep.add("components", out.components);
     rep.add("max_ball_radius", out.max_ball_radius);

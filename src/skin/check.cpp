@@ -124,8 +124,7 @@ CheckReport check_skin_mesh(const SkinFunction& phi, const SurfaceMesh& mesh, co
     if (out.normal_dev_max_deg > options.max_normal_deviation_deg)
         out.problems.push_back("normal deviation " + format_number(out.normal_dev_max_deg) + " deg, above " +
                                format_number(options.max_normal_deviation_deg));
-    CheckReport rep;
-    for (std::string& p : out.problems) rep.fail(std::move(p));
+    CheckReport rep = CheckReport::of_problems(std::move(out.problems));
     rep.add("euler", out.euler);
     rep.add("components", out.components);
     rep.add("expected_euler", out.expected_euler);
