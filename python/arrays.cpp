@@ -2,6 +2,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/mesh/soup.hpp"
+#include "dynmesh/system/parallel.hpp"
 
 namespace dynmesh::python {
 
@@ -14,19 +15,29 @@ void require_shape(const py::array& a, const char* what, const char* rows, py::s
 
 namespace {
 
+/// Rows per thread in the conversions below (a million-vertex mesh goes to two threads).
+constexpr std::size_t kRowsPerPart = std::size_t(1) << 18;
+
 template <class P, int D>
 std::vector<P> points_of(const Doubles& a, const char* what, bool finite) {
     require_shape(a, what, "n", D);
-    const auto v = a.unchecked<2>();
-    std::vector<P> out(std::size_t(v.shape(0)));
-    for (py::ssize_t i = 0; i < v.shape(0); ++i) {
-        for (int k = 0; k < D; ++k) {
-            const double x = v(i, k);
-            if (finite && !std::isfinite(x))
-                throw InvalidInput(std::string(what) + ": point " + std::to_string(i) + " has a coordinate that is not finite");
-            out[std::size_t(i)][std::size_t(k)] = x;
+    const auto n = std::size_t(a.shape(0));
+    const double* in = a.data();
+    std::vector<P> out;
+    reserve_huge(out, n);
+    out.resize(n);
+    // Each part throws at its first bad point; the lowest part's error is the one rethrown.
+    run_parts(parallel_parts(n, kRowsPerPart), n, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+            for (std::size_t k = 0; k < D; ++k) {
+                const double x = in[D * i + k];
+                if (finite && !std::isfinite(x))
+                    throw InvalidInput(std::string(what) + ": point " + std::to_string(i) +
+                                       " has a coordinate that is not finite");
+                out[i][k] = x;
+            }
         }
-    }
+    });
     return out;
 }
 
@@ -71,32 +82,38 @@ TriangleSoup soup_of(std::vector<Point3> points, const py::array& face_array) {
     soup.points = std::move(points);
     const Indices faces = indices_of(face_array, "faces");
     require_shape(faces, "faces", "m", 3);
-    const auto f = faces.unchecked<2>();
+    const auto m = std::size_t(faces.shape(0));
+    const std::int64_t* in = faces.data();
     const auto n = std::int64_t(soup.points.size());
-    soup.triangles.reserve(std::size_t(f.shape(0)));
-    for (py::ssize_t i = 0; i < f.shape(0); ++i) {
-        std::array<std::uint32_t, 3> t{};
-        for (int k = 0; k < 3; ++k) {
-            const std::int64_t idx = f(i, k);
-            if (idx < 0 || idx >= n)
-                throw InvalidInput("face " + std::to_string(i) + " refers to vertex " + std::to_string(idx) + ", not in [0, " +
-                                   std::to_string(n) + ")");
-            t[std::size_t(k)] = std::uint32_t(idx);
+    reserve_huge(soup.triangles, m);
+    soup.triangles.resize(m);
+    run_parts(parallel_parts(m, kRowsPerPart), m, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                const std::int64_t idx = in[3 * i + k];
+                if (idx < 0 || idx >= n)
+                    throw InvalidInput("face " + std::to_string(i) + " refers to vertex " + std::to_string(idx) +
+                                       ", not in [0, " + std::to_string(n) + ")");
+                soup.triangles[i][k] = std::uint32_t(idx);
+            }
         }
-        soup.triangles.push_back(t);
-    }
+    });
     return soup;
 }
 
 Indices faces_of(const SurfaceMesh& mesh) {
+    if (mesh.has_garbage()) throw InternalError("faces_of: the mesh holds deleted elements");
     Indices faces({py::ssize_t(mesh.n_faces()), py::ssize_t(3)});
-    auto f = faces.mutable_unchecked<2>();
-    for (Face x : mesh.faces()) {
-        const Halfedge h = mesh.halfedge(x);
-        f(x.idx(), 0) = mesh.from_vertex(h).idx();
-        f(x.idx(), 1) = mesh.to_vertex(h).idx();
-        f(x.idx(), 2) = mesh.to_vertex(mesh.next(h)).idx();
-    }
+    std::int64_t* out = faces.mutable_data();
+    const std::size_t m = mesh.n_faces();
+    run_parts(parallel_parts(m, kRowsPerPart), m, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+            const Halfedge h = mesh.halfedge(Face(std::uint32_t(i)));
+            out[3 * i] = mesh.from_vertex(h).idx();
+            out[3 * i + 1] = mesh.to_vertex(h).idx();
+            out[3 * i + 2] = mesh.to_vertex(mesh.next(h)).idx();
+        }
+    });
     return faces;
 }
 

@@ -125,6 +125,23 @@ def test_errors_are_python_exceptions(tmp_path):
         dynmesh.flip(v, nonmanifold)
 
 
+def test_large_arrays_name_their_first_bad_row():
+    # Arrays this long are converted by several threads; the message still names the first bad
+    # row, not whichever thread saw one first.
+    n = 1 << 20
+    v = np.zeros((n, 3))
+    v[n // 3, 1] = np.nan
+    v[n - 1, 0] = np.inf
+    f = np.zeros((n, 3), dtype=np.int64)
+    with pytest.raises(ValueError, match="vertices: point %d has a coordinate that is not finite" % (n // 3)):
+        dynmesh.flip(v, f)
+    v[:] = 0.0
+    f[n // 5] = [0, 1, n]
+    f[n - 2] = [0, 1, -1]
+    with pytest.raises(ValueError, match="face %d refers to vertex %d" % (n // 5, n)):
+        dynmesh.flip(v, f)
+
+
 def test_arrays_outlive_their_mesh_and_inputs_are_not_kept():
     v, f = octahedron()
     refs = sys.getrefcount(v), sys.getrefcount(f)

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
+#include <utility>
 #include <set>
 #include <optional>
 #include <unordered_map>
@@ -10,11 +12,13 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/system/parallel.hpp"
 
 namespace dynmesh {
 
 namespace {
 constexpr std::uint32_t kInvalid = Handle<VertexTag>::kInvalid;
+using Triangle = std::array<std::uint32_t, 3>;
 
 std::string vstr(std::uint32_t i) { return "vertex " + std::to_string(i); }
 
@@ -94,64 +98,95 @@ namespace {
 
 /// Corner j = 3t + i of a soup is the directed edge tri[i] -> tri[i + 1]. For each corner, the
 /// corner of the opposite direction on the same edge (kInvalid when there is none), when every
-/// edge is used at most once in each direction; nullopt otherwise. Corners are bucketed by the
-/// smaller end of their edge and each bucket sorted by (other end, corner): one pass pairs them.
-std::optional<std::vector<std::uint32_t>> twin_corners(const TriangleSoup& soup) {
-    const std::size_t nc = soup.triangles.size() * 3;
-    const auto ends = [&](std::size_t j) {
-        const auto& t = soup.triangles[j / 3];
-        return std::pair{t[j % 3], t[(j % 3 + 1) % 3]};
-    };
-    std::vector<std::uint32_t> begin(soup.points.size() + 1, 0);
-    for (std::size_t j = 0; j < nc; ++j) {
-        const auto [a, b] = ends(j);
-        ++begin[std::min(a, b) + 1];
+/// edge is used at most once in each direction; nullopt otherwise. `pairs` counts the twins.
+///
+/// Corners are bucketed by the smaller end of their edge (a counting sort; each part of the
+/// triangles counts and fills its own share of every bucket, so buckets list corners in soup
+/// order whatever the number of parts). Within a bucket, the two corners of an edge meet at its
+/// larger end, which remembers the first of them until the second comes; parts of the buckets
+/// remember in arrays of their own.
+std::optional<std::vector<std::uint32_t>> twin_corners(std::size_t nv, std::span<const Triangle> triangles,
+                                                       unsigned parts, std::size_t& pairs) {
+    const std::size_t nf = triangles.size(), nc = nf * 3;
+    // fill[p][v]: first the number of part p's corners in bucket v, then where the next goes.
+    std::vector<std::vector<std::uint32_t>> fill(parts);
+    run_parts(parts, nf, [&](unsigned p, std::size_t b, std::size_t e) {
+        fill[p].assign(nv, 0);
+        for (std::size_t t = b; t < e; ++t)
+            for (int i = 0; i < 3; ++i) ++fill[p][std::min(triangles[t][i], triangles[t][(i + 1) % 3])];
+    });
+    std::vector<std::uint32_t> begin(nv + 1);
+    std::uint32_t total = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+        begin[v] = total;
+        for (unsigned p = 0; p < parts; ++p) total += std::exchange(fill[p][v], total);
     }
-    std::partial_sum(begin.begin(), begin.end(), begin.begin());
+    begin[nv] = total;
+    // An entry: the larger end of the edge, and the corner with kDown set when it runs from the
+    // larger end to the smaller (corners stay below 2^31: from_soup bounds the triangle count).
+    constexpr std::uint32_t kDown = 0x80000000u;
     struct Entry {
         std::uint32_t other, corner;
-        bool operator<(const Entry& e) const { return other != e.other ? other < e.other : corner < e.corner; }
     };
-    std::vector<Entry> entries(nc);
-    {
-        std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
-        for (std::size_t j = 0; j < nc; ++j) {
-            const auto [a, b] = ends(j);
-            entries[fill[std::min(a, b)]++] = {std::max(a, b), std::uint32_t(j)};
+    const std::unique_ptr<Entry[]> entries(new Entry[nc]);  // every slot is written below
+    advise_huge_pages(entries.get(), nc * sizeof(Entry));
+    run_parts(parts, nf, [&](unsigned p, std::size_t b, std::size_t e) {
+        std::vector<std::uint32_t>& next = fill[p];
+        for (std::size_t t = b; t < e; ++t) {
+            const auto& tri = triangles[t];
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t a = tri[i], c = tri[(i + 1) % 3], j = std::uint32_t(3 * t + std::size_t(i));
+                if (a < c)
+                    entries[next[a]++] = {c, j};
+                else
+                    entries[next[c]++] = {a, j | kDown};
+            }
         }
-    }
-    std::vector<std::uint32_t> twins(nc, kInvalid);
-    for (std::size_t v = 0; v + 1 < begin.size(); ++v) {
-        const auto first = entries.begin() + begin[v], last = entries.begin() + begin[v + 1];
-        if (last - first <= 16) {  // the usual bucket: a few edges; insertion sort
-            for (auto it = first + 1; it < last; ++it)
-                for (auto k = it; k > first && *k < *(k - 1); --k) std::iter_swap(k, k - 1);
-        } else {
-            std::sort(first, last);
-        }
-        for (auto it = first; it < last;) {
-            auto group = it + 1;
-            while (group < last && group->other == it->other) ++group;
-            if (group - it == 2) {
-                const std::uint32_t j = it->corner, k = (it + 1)->corner;
-                if (ends(j).first == ends(k).first) return std::nullopt;  // one direction twice
+    });
+    fill.clear();
+    std::vector<std::uint32_t> twins;
+    reserve_huge(twins, nc);
+    twins.assign(nc, kInvalid);
+    struct Seen {
+        std::uint32_t bucket = kInvalid;  // the bucket that last reached this vertex
+        std::uint32_t corner = 0;         // its unpaired corner there; kInvalid once paired
+    };
+    std::vector<std::size_t> part_pairs(parts, 0);
+    std::vector<char> part_bad(parts, 0);
+    run_parts(parts, nv, [&](unsigned p, std::size_t vb, std::size_t ve) {
+        std::vector<Seen> seen(nv - vb);  // the larger ends of this part's buckets are >= vb
+        for (std::size_t v = vb; v < ve; ++v) {
+            for (std::uint32_t e = begin[v]; e < begin[v + 1]; ++e) {
+                Seen& s = seen[entries[e].other - vb];
+                const std::uint32_t c = entries[e].corner;
+                if (s.bucket != v) {
+                    s = {std::uint32_t(v), c};
+                    continue;
+                }
+                // A third corner on the edge, or a second one in the same direction.
+                if (s.corner == kInvalid || ((s.corner ^ c) & kDown) == 0) {
+                    part_bad[p] = 1;
+                    return;
+                }
+                const std::uint32_t j = c & ~kDown, k = s.corner & ~kDown;
                 twins[j] = k;
                 twins[k] = j;
-            } else if (group - it > 2) {
-                return std::nullopt;  // some direction repeats
+                s.corner = kInvalid;
+                ++part_pairs[p];
             }
-            it = group;
         }
-    }
+    });
+    if (std::find(part_bad.begin(), part_bad.end(), 1) != part_bad.end()) return std::nullopt;
+    pairs = std::accumulate(part_pairs.begin(), part_pairs.end(), std::size_t(0));
     return twins;
 }
 
 /// Throws the TopologyError naming the first triangle (in soup order) that uses an edge in a
 /// direction an earlier triangle used already (called when twin_corners() found one).
-[[noreturn]] void throw_first_repeated_edge(const TriangleSoup& soup) {
+[[noreturn]] void throw_first_repeated_edge(std::span<const Triangle> triangles) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> used;
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-        const auto& tri = soup.triangles[t];
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const auto& tri = triangles[t];
         for (int i = 0; i < 3; ++i) {
             const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
             if (!used.insert({a, b}).second)
@@ -166,82 +201,179 @@ std::optional<std::vector<std::uint32_t>> twin_corners(const TriangleSoup& soup)
 
 }  // namespace
 
-SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup) {
+SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup, const FromSoupOptions& options) {
+    return build(soup.points, soup.triangles, options.threads);
+}
+
+SurfaceMesh SurfaceMesh::from_soup(TriangleSoup&& soup, const FromSoupOptions& options) {
+    return build(std::move(soup.points), soup.triangles, options.threads);
+}
+
+SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Triangle> triangles, unsigned threads) {
     SurfaceMesh m;
-    const std::size_t nv = soup.points.size();
-    if (nv >= kInvalid || soup.triangles.size() >= kInvalid / 6)
-        throw InvalidInput("from_soup: too many elements for 32-bit indices");
-    m.reserve(nv, soup.triangles.size() * 3 / 2 + 16, soup.triangles.size());
-    for (std::size_t i = 0; i < nv; ++i) {
-        if (!is_finite(soup.points[i]))
-            throw InvalidInput("from_soup: " + vstr(static_cast<std::uint32_t>(i)) +
-                               " has a non-finite coordinate (NaN or infinity)");
-        m.add_vertex(soup.points[i]);
-    }
+    const std::size_t nv = points.size(), nf = triangles.size();
+    if (nv >= kInvalid || nf >= kInvalid / 6) throw InvalidInput("from_soup: too many elements for 32-bit indices");
+    // Parts of at least 2^17 triangles each unless the caller says (below that, threads cost
+    // more than they save). Each check below throws at a part's first bad element; run_parts
+    // rethrows the lowest part's, so the message names the first in the soup.
+    const unsigned parts = threads == 0 ? parallel_parts(nf, std::size_t(1) << 17)
+                                        : unsigned(std::max<std::size_t>(1, std::min<std::size_t>(threads, nf)));
+    run_parts(std::min(parts, unsigned(std::max<std::size_t>(1, nv))), nv, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i)
+            if (!is_finite(points[i]))
+                throw InvalidInput("from_soup: " + vstr(static_cast<std::uint32_t>(i)) +
+                                   " has a non-finite coordinate (NaN or infinity)");
+    });
     const auto where = [](std::size_t t) { return "from_soup: triangle " + std::to_string(t); };
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-        const auto& tri = soup.triangles[t];
-        for (std::uint32_t i : tri)
-            if (i >= nv)
-                throw InvalidInput(where(t) + " uses vertex index " + std::to_string(i) +
-                                   " but there are only " + std::to_string(nv) + " vertices");
-        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-            throw InvalidInput(where(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
-                               std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
-    }
+    run_parts(parts, nf, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t t = b; t < e; ++t) {
+            const auto& tri = triangles[t];
+            for (std::uint32_t i : tri)
+                if (i >= nv)
+                    throw InvalidInput(where(t) + " uses vertex index " + std::to_string(i) +
+                                       " but there are only " + std::to_string(nv) + " vertices");
+            if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+                throw InvalidInput(where(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+                                   std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+        }
+    });
+    const std::size_t nc = nf * 3;
     // The twin of each corner (the corner of the opposite direction of its edge), or the first
     // triangle that uses an edge twice in one direction.
-    const std::size_t nc = soup.triangles.size() * 3;
-    const std::optional<std::vector<std::uint32_t>> twins = twin_corners(soup);
-    if (!twins) throw_first_repeated_edge(soup);
-    std::vector<std::uint32_t> corner_halfedge(nc, kInvalid);
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-        const auto& tri = soup.triangles[t];
-        const Face f = m.new_face();
-        std::array<Halfedge, 3> hs;
-        for (int i = 0; i < 3; ++i) {
-            const std::size_t j = 3 * t + std::size_t(i);
-            const std::uint32_t back = (*twins)[j];
-            // The first corner of an edge creates it; its twin takes the other halfedge.
-            const Halfedge h = back < j ? twin(Halfedge(corner_halfedge[back]))
-                                        : m.new_edge(Vertex(tri[i]), Vertex(tri[(i + 1) % 3]));
-            corner_halfedge[j] = h.idx();
-            hs[i] = h;
+    std::size_t pairs = 0;
+    std::optional<std::vector<std::uint32_t>> twins = twin_corners(nv, triangles, parts, pairs);
+    if (!twins) throw_first_repeated_edge(triangles);
+    const std::vector<std::uint32_t>& twin_of = *twins;
+    // Corner j (directed edge tri[i] -> tri[i + 1]) gets halfedge 2e of a new edge e when it is
+    // the first corner of its edge in soup order, the other halfedge of its twin's edge
+    // otherwise. Each part numbers its first corners after those of the parts before it.
+    const auto first = [&](std::size_t j) { return twin_of[j] == kInvalid || twin_of[j] > j; };
+    std::vector<std::uint32_t> part_edges(parts + 1, 0);
+    run_parts(parts, nc, [&](unsigned p, std::size_t b, std::size_t e) {
+        for (std::size_t j = b; j < e; ++j) part_edges[p + 1] += first(j) ? 1 : 0;
+    });
+    std::partial_sum(part_edges.begin(), part_edges.end(), part_edges.begin());
+    const std::size_t ne = part_edges[parts];
+    if (ne != nc - pairs) throw InternalError("from_soup: the twin pairs and the edges disagree");
+    // The halfedge of every corner: first the first corners, then the others from their twins.
+    std::vector<std::uint32_t> corner_halfedge;
+    reserve_huge(corner_halfedge, nc);
+    corner_halfedge.resize(nc);
+    run_parts(parts, nc, [&](unsigned p, std::size_t b, std::size_t e) {
+        std::uint32_t next_edge = part_edges[p];
+        for (std::size_t j = b; j < e; ++j)
+            if (first(j)) corner_halfedge[j] = 2 * next_edge++;
+    });
+    run_parts(parts, nc, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t j = b; j < e; ++j)
+            if (!first(j)) corner_halfedge[j] = corner_halfedge[twin_of[j]] ^ 1u;
+    });
+    // Every array is sized once and written in place. The first corner of each edge writes both
+    // its halfedges, so that each part writes its own range of halfedges.
+    m.positions_ = std::move(points);
+    for (auto* a : {&m.hto_, &m.hnext_, &m.hprev_, &m.hface_}) reserve_huge(*a, 2 * ne);
+    for (auto* a : {&m.hto_, &m.hnext_, &m.hprev_}) a->resize(2 * ne);
+    m.hface_.assign(2 * ne, kInvalid);
+    m.edeleted_.assign(ne, false);
+    m.eprops_.resize(ne);
+    m.fhalfedge_.resize(nf);
+    m.fdeleted_.assign(nf, false);
+    m.fprops_.resize(nf);
+    m.vdeleted_.assign(nv, false);
+    m.vprops_.resize(nv);
+    const auto corner_vertex = [&](std::size_t j, std::size_t shift) { return triangles[j / 3][(j + shift) % 3]; };
+    const auto corner_after = [](std::size_t j, std::size_t shift) { return j - j % 3 + (j + shift) % 3; };
+    const auto write_halfedge = [&](std::size_t j) {
+        const std::uint32_t h = corner_halfedge[j];
+        m.hto_[h] = corner_vertex(j, 1);
+        m.hnext_[h] = corner_halfedge[corner_after(j, 1)];
+        m.hprev_[h] = corner_halfedge[corner_after(j, 2)];
+        m.hface_[h] = static_cast<std::uint32_t>(j / 3);
+    };
+    run_parts(parts, nc, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t j = b; j < e; ++j) {
+            if (!first(j)) continue;
+            write_halfedge(j);
+            if (twin_of[j] != kInvalid)
+                write_halfedge(twin_of[j]);
+            else
+                m.hto_[corner_halfedge[j] ^ 1u] = corner_vertex(j, 0);  // a boundary halfedge
         }
-        m.link_triangle(hs[0], hs[1], hs[2], f);
-        for (Halfedge h : hs) m.set_halfedge(m.from_vertex(h), h);
-    }
+    });
+    // A face's halfedge is that of its first corner; a vertex's, that of its last corner in
+    // soup order: each part keeps its own (the last part the mesh's), and a part's choice
+    // stands unless a later part has one.
+    std::vector<std::vector<std::uint32_t>> part_vertex_halfedge(parts - 1);
+    m.vhalfedge_.assign(nv, kInvalid);
+    run_parts(parts, nf, [&](unsigned p, std::size_t b, std::size_t e) {
+        std::vector<std::uint32_t>& vh = p + 1 == parts ? m.vhalfedge_ : part_vertex_halfedge[p];
+        if (p + 1 != parts) vh.assign(nv, kInvalid);
+        for (std::size_t t = b; t < e; ++t) {
+            m.fhalfedge_[t] = corner_halfedge[3 * t];
+            for (std::size_t i = 0; i < 3; ++i) vh[triangles[t][i]] = corner_halfedge[3 * t + i];
+        }
+    });
+    for (int p = int(parts) - 2; p >= 0; --p)
+        for (std::size_t v = 0; v < nv; ++v)
+            if (m.vhalfedge_[v] == kInvalid) m.vhalfedge_[v] = part_vertex_halfedge[std::size_t(p)][v];
+    twins.reset();
+    corner_halfedge = {};
+    part_vertex_halfedge.clear();
     // Link boundary halfedges into loops; a vertex with two outgoing boundary halfedges is
-    // pinched (non-manifold).
+    // pinched (non-manifold). The parts list their boundary halfedges; one pass links them in
+    // halfedge order.
+    std::vector<std::vector<std::uint32_t>> part_boundary(parts);
+    run_parts(parts, m.hto_.size(), [&](unsigned p, std::size_t b, std::size_t e) {
+        for (std::size_t h = b; h < e; ++h)
+            if (m.hface_[h] == kInvalid) part_boundary[p].push_back(std::uint32_t(h));
+    });
     std::vector<std::uint32_t> boundary_out(nv, kInvalid);
-    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) {
-        if (m.hface_[h] != kInvalid) continue;
-        const std::uint32_t from = m.hto_[h ^ 1u];
-        if (boundary_out[from] != kInvalid)
-            throw TopologyError("from_soup: " + vstr(from) +
-                                " is non-manifold: it has two separate boundary fans");
-        boundary_out[from] = h;
-    }
-    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) {
-        if (m.hface_[h] != kInvalid) continue;
-        m.set_next(Halfedge(h), Halfedge(boundary_out[m.hto_[h]]));
-        m.set_halfedge(Vertex(m.hto_[h ^ 1u]), Halfedge(h));
-    }
-    // Every outgoing halfedge of a manifold vertex lies in one fan around it.
-    std::vector<std::uint32_t> out_count(nv, 0), fan_count(nv, 0);
-    for (std::uint32_t h = 0; h < m.hto_.size(); ++h) ++out_count[m.hto_[h ^ 1u]];
-    for (std::uint32_t v = 0; v < nv; ++v) {
-        if (m.vhalfedge_[v] == kInvalid) continue;
-        std::uint32_t n = 0;
-        for ([[maybe_unused]] Halfedge h : m.outgoing_halfedges(Vertex(v))) {
-            if (++n > out_count[v]) break;
+    for (const auto& list : part_boundary)
+        for (std::uint32_t h : list) {
+            const std::uint32_t from = m.hto_[h ^ 1u];
+            if (boundary_out[from] != kInvalid)
+                throw TopologyError("from_soup: " + vstr(from) +
+                                    " is non-manifold: it has two separate boundary fans");
+            boundary_out[from] = h;
         }
-        if (n != out_count[v])
-            throw TopologyError("from_soup: " + vstr(v) +
-                                " is non-manifold: its triangles form " +
-                                std::string(n < out_count[v] ? "more than one fan" : "a broken fan") +
-                                " (pinched vertex)");
-    }
+    for (const auto& list : part_boundary)
+        for (std::uint32_t h : list) {
+            m.set_next(Halfedge(h), Halfedge(boundary_out[m.hto_[h]]));
+            m.set_halfedge(Vertex(m.hto_[h ^ 1u]), Halfedge(h));
+        }
+    // Every outgoing halfedge of a manifold vertex lies in the one fan around it: walk each
+    // vertex's fan from its halfedge, marking what it reaches; an unmarked halfedge leaves a
+    // vertex with another fan. (Each part marks only its own vertices' halfedges.)
+    std::vector<char> reached(m.hto_.size(), 0);
+    std::vector<std::uint32_t> part_broken(parts, kInvalid);
+    run_parts(parts, nv, [&](unsigned p, std::size_t b, std::size_t e) {
+        for (std::size_t v = b; v < e; ++v) {
+            const std::uint32_t start = m.vhalfedge_[v];
+            if (start == kInvalid) continue;
+            std::uint32_t h = start;
+            std::size_t steps = 0;
+            do {
+                reached[h] = 1;
+                h = m.hprev_[h] ^ 1u;  // ccw_rotated
+            } while (h != start && ++steps <= m.hto_.size());
+            if (h != start) {
+                part_broken[p] = std::uint32_t(v);
+                return;
+            }
+        }
+    });
+    for (std::uint32_t v : part_broken)
+        if (v != kInvalid)
+            throw TopologyError("from_soup: " + vstr(v) + " is non-manifold: its triangles form a broken fan");
+    std::vector<std::uint32_t> part_pinched(parts, kInvalid);
+    run_parts(parts, m.hto_.size(), [&](unsigned p, std::size_t b, std::size_t e) {
+        for (std::size_t h = b; h < e; ++h)
+            if (!reached[h]) part_pinched[p] = std::min(part_pinched[p], m.hto_[h ^ 1u]);
+    });
+    const std::uint32_t pinched = *std::min_element(part_pinched.begin(), part_pinched.end());
+    if (pinched != kInvalid)
+        throw TopologyError("from_soup: " + vstr(pinched) +
+                            " is non-manifold: its triangles form more than one fan (pinched vertex)");
     return m;
 }
 

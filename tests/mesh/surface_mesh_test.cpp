@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/mesh/check.hpp"
@@ -39,10 +41,27 @@ TEST(SurfaceMesh, OpenGridHasBoundary) {
 TEST(SurfaceMesh, FromSoupRejectsBadTopology) {
     TriangleSoup s;
     s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    const auto expect_repeated_edge = [&](const std::string& triangle) {
+        try {
+            (void)SurfaceMesh::from_soup(s);
+            ADD_FAILURE() << "a repeated edge direction was accepted";
+        } catch (const TopologyError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(triangle + ": edge (0, 1) is used twice in the same direction"), std::string::npos)
+                << what;
+        }
+    };
     s.triangles = {{0, 1, 2}, {0, 1, 3}};  // same direction twice
-    EXPECT_THROW((void)SurfaceMesh::from_soup(s), TopologyError);
-    s.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
-    EXPECT_THROW((void)SurfaceMesh::from_soup(s), TopologyError);
+    expect_repeated_edge("triangle 1");
+    s.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};  // a third triangle on the edge
+    expect_repeated_edge("triangle 2");
+    s.triangles = {{1, 0, 3}, {0, 1, 2}, {2, 1, 0}};  // the same, the third one reversed
+    try {
+        (void)SurfaceMesh::from_soup(s);
+        ADD_FAILURE() << "an edge with three triangles was accepted";
+    } catch (const TopologyError& e) {
+        EXPECT_NE(std::string(e.what()).find("triangle 2: edge (1, 0) is used twice"), std::string::npos) << e.what();
+    }
     s.triangles = {{0, 1, 7}};
     EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
     s.triangles = {{0, 1, 1}};
@@ -59,6 +78,109 @@ TEST(SurfaceMesh, FromSoupRejectsBadTopology) {
     s.triangles = {{0, 1, 2}};
     s.points[0].x = std::nan("");
     EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
+}
+
+/// The triangles, each rotated to start at its smallest index (orientation kept).
+std::vector<std::array<std::uint32_t, 3>> rotated_to_smallest(std::vector<std::array<std::uint32_t, 3>> ts) {
+    for (auto& t : ts) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return ts;
+}
+
+// Whatever the triangle order and the corner each triangle starts at, the mesh is valid and
+// reads back as the same soup (faces in input order, with their orientation), through either
+// overload.
+TEST(SurfaceMesh, FromSoupRoundTripsAnyTriangleOrder) {
+    for (const SurfaceMesh& base : {test::icosphere(3), test::grid(9)}) {
+        TriangleSoup s = base.to_soup();
+        Rng rng(7);
+        for (std::size_t i = s.triangles.size(); i > 1; --i)
+            std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
+        for (auto& t : s.triangles) std::rotate(t.begin(), t.begin() + rng.below(3), t.end());
+        const SurfaceMesh m = SurfaceMesh::from_soup(s);
+        const auto r = check_mesh(m);
+        EXPECT_TRUE(r.ok()) << r.summary();
+        EXPECT_EQ(m.n_edges(), base.n_edges());
+        const TriangleSoup back = m.to_soup();
+        EXPECT_EQ(back.points, s.points);
+        EXPECT_EQ(rotated_to_smallest(back.triangles), rotated_to_smallest(s.triangles));
+        TriangleSoup moved = s;
+        const SurfaceMesh m2 = SurfaceMesh::from_soup(std::move(moved));
+        EXPECT_EQ(m2.to_soup().triangles, back.triangles);
+        for (Face f : m.faces()) EXPECT_EQ(m2.halfedge(f), m.halfedge(f));
+    }
+}
+
+/// Every connectivity array of the mesh, in handle order (for comparing two builds).
+std::vector<std::uint32_t> connectivity(const SurfaceMesh& m) {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t h = 0; h < m.halfedges_size(); ++h) {
+        out.push_back(m.to_vertex(Halfedge(h)).idx());
+        out.push_back(m.next(Halfedge(h)).idx());
+        out.push_back(m.prev(Halfedge(h)).idx());
+        out.push_back(m.face(Halfedge(h)).idx());
+    }
+    for (Vertex v : m.vertices()) out.push_back(m.halfedge(v).idx());
+    for (Face f : m.faces()) out.push_back(m.halfedge(f).idx());
+    return out;
+}
+
+// The threads split the work, never the result: every connectivity array and every error
+// message is the same for 1, 2, 3 and 7 threads, on a closed and an open shuffled soup.
+TEST(SurfaceMesh, FromSoupIsTheSameForEveryThreadCount) {
+    for (const SurfaceMesh& base : {test::icosphere(4), test::grid(40)}) {
+        TriangleSoup s = base.to_soup();
+        Rng rng(11);
+        for (std::size_t i = s.triangles.size(); i > 1; --i)
+            std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
+        const SurfaceMesh one = SurfaceMesh::from_soup(s, {.threads = 1});
+        EXPECT_TRUE(check_mesh(one).ok());
+        for (unsigned threads : {2u, 3u, 7u})
+            EXPECT_EQ(connectivity(SurfaceMesh::from_soup(s, {.threads = threads})), connectivity(one))
+                << threads << " threads";
+        // Errors in several parts: the first in soup order is named, whatever the split.
+        const auto message = [&](const TriangleSoup& bad, unsigned threads) {
+            try {
+                (void)SurfaceMesh::from_soup(bad, {.threads = threads});
+            } catch (const Error& e) {
+                return std::string(e.what());
+            }
+            return std::string("accepted");
+        };
+        TriangleSoup out_of_range = s;
+        const std::size_t n = s.triangles.size();
+        out_of_range.triangles[n / 3][1] = std::uint32_t(s.points.size());
+        out_of_range.triangles[n - 2][0] = std::uint32_t(s.points.size() + 5);
+        TriangleSoup reversed = s;  // two faces turned over: edges used twice in one direction
+        for (std::size_t t : {n / 2, n - 1}) std::swap(reversed.triangles[t][0], reversed.triangles[t][1]);
+        TriangleSoup not_finite = s;
+        not_finite.points[s.points.size() / 4].y = std::nan("");
+        not_finite.points[s.points.size() - 1].z = INFINITY;
+        for (const TriangleSoup* bad : {&out_of_range, &reversed, &not_finite}) {
+            const std::string expected = message(*bad, 1);
+            EXPECT_NE(expected, "accepted");
+            for (unsigned threads : {2u, 3u, 7u}) EXPECT_EQ(message(*bad, threads), expected) << threads << " threads";
+        }
+    }
+}
+
+// Two closed octahedra glued at one vertex: every edge has two triangles and no boundary, but
+// the shared vertex has two fans.
+TEST(SurfaceMesh, FromSoupRejectsClosedPinchedVertex) {
+    TriangleSoup a = test::octahedron().to_soup();
+    const auto n = static_cast<std::uint32_t>(a.points.size());
+    TriangleSoup s = a;
+    for (std::size_t i = 1; i < a.points.size(); ++i) s.points.push_back(a.points[i] + Vec3{0, 0, 3});
+    // Vertex 0 of the copy is vertex 0 itself; the others are shifted by n - 1.
+    for (auto t : a.triangles) {
+        for (auto& i : t) i = i == 0 ? 0 : i + n - 1;
+        s.triangles.push_back(t);
+    }
+    try {
+        (void)SurfaceMesh::from_soup(s);
+        FAIL() << "a vertex with two closed fans was accepted";
+    } catch (const TopologyError& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 0 is non-manifold"), std::string::npos) << e.what();
+    }
 }
 
 TEST(SurfaceMesh, FlipKeepsOrientationAndVertices) {

@@ -40,6 +40,15 @@ using FaceProperty = Property<Face, T>;
 
 class SurfaceMesh;
 
+/// How SurfaceMesh::from_soup works (never what it builds: the mesh is the same for every
+/// setting).
+struct FromSoupOptions {
+    /// Threads: 0 lets the machine decide (one per hardware thread, at most 8, each with at
+    /// least 2^17 triangles; one for a smaller soup), k uses k (at most one per triangle), 1
+    /// keeps to the calling thread.
+    unsigned threads = 0;
+};
+
 /// Iterates the live (non-deleted) elements of one kind.
 template <class HandleT>
 class ElementRange {
@@ -134,7 +143,9 @@ public:
     ///        an edge used twice in the same direction (inconsistent orientation), or a
     ///        non-manifold (pinched) vertex. Each message names the triangle or vertex.
     ///        Unreferenced vertices are kept (isolated) and reported by check_mesh().
-    static SurfaceMesh from_soup(const TriangleSoup& soup);
+    static SurfaceMesh from_soup(const TriangleSoup& soup, const FromSoupOptions& options = {});
+    /// As above, taking the soup's points over instead of copying them.
+    static SurfaceMesh from_soup(TriangleSoup&& soup, const FromSoupOptions& options = {});
     /// The inverse of from_soup (live elements only, in index order after compaction).
     [[nodiscard]] TriangleSoup to_soup() const;
 
@@ -341,6 +352,8 @@ public:
 
 private:
     friend class VertexHalfedgeRange::Iterator;
+    static SurfaceMesh build(std::vector<Point3> points, std::span<const std::array<std::uint32_t, 3>> triangles,
+                             unsigned threads);
     Halfedge new_edge(Vertex from, Vertex to);  // returns the halfedge from -> to
     Face new_face();
     void set_next(Halfedge h, Halfedge n) {
