@@ -98,15 +98,15 @@ namespace {
 
 /// Corner j = 3t + i of a soup is the directed edge tri[i] -> tri[i + 1]. For each corner, the
 /// corner of the opposite direction on the same edge (kInvalid when there is none), when every
-/// edge is used at most once in each direction; nullopt otherwise. `pairs` counts the twins.
+/// edge is used at most once in each direction; null otherwise. `pairs` counts the twins.
 ///
 /// Corners are bucketed by the smaller end of their edge (a counting sort; each part of the
 /// triangles counts and fills its own share of every bucket, so buckets list corners in soup
 /// order whatever the number of parts). Within a bucket, the two corners of an edge meet at its
 /// larger end, which remembers the first of them until the second comes; parts of the buckets
 /// remember in arrays of their own.
-std::optional<std::vector<std::uint32_t>> twin_corners(std::size_t nv, std::span<const Triangle> triangles,
-                                                       unsigned parts, std::size_t& pairs) {
+std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Triangle> triangles, unsigned parts,
+                                              std::size_t& pairs) {
     const std::size_t nf = triangles.size(), nc = nf * 3;
     // fill[p][v]: first the number of part p's corners in bucket v, then where the next goes.
     std::vector<std::vector<std::uint32_t>> fill(parts);
@@ -128,8 +128,7 @@ std::optional<std::vector<std::uint32_t>> twin_corners(std::size_t nv, std::span
     struct Entry {
         std::uint32_t other, corner;
     };
-    const std::unique_ptr<Entry[]> entries(new Entry[nc]);  // every slot is written below
-    advise_huge_pages(entries.get(), nc * sizeof(Entry));
+    const std::unique_ptr<Entry[]> entries = uninitialized_huge_array<Entry>(nc);  // every slot is written below
     run_parts(parts, nf, [&](unsigned p, std::size_t b, std::size_t e) {
         std::vector<std::uint32_t>& next = fill[p];
         for (std::size_t t = b; t < e; ++t) {
@@ -144,9 +143,8 @@ std::optional<std::vector<std::uint32_t>> twin_corners(std::size_t nv, std::span
         }
     });
     fill.clear();
-    std::vector<std::uint32_t> twins;
-    reserve_huge(twins, nc);
-    twins.assign(nc, kInvalid);
+    std::unique_ptr<std::uint32_t[]> twins = uninitialized_huge_array<std::uint32_t>(nc);
+    run_parts(parts, nc, [&](unsigned, std::size_t b, std::size_t e) { std::fill(&twins[b], &twins[0] + e, kInvalid); });
     struct Seen {
         std::uint32_t bucket = kInvalid;  // the bucket that last reached this vertex
         std::uint32_t corner = 0;         // its unpaired corner there; kInvalid once paired
@@ -176,7 +174,7 @@ std::optional<std::vector<std::uint32_t>> twin_corners(std::size_t nv, std::span
             }
         }
     });
-    if (std::find(part_bad.begin(), part_bad.end(), 1) != part_bad.end()) return std::nullopt;
+    if (std::find(part_bad.begin(), part_bad.end(), 1) != part_bad.end()) return nullptr;
     pairs = std::accumulate(part_pairs.begin(), part_pairs.end(), std::size_t(0));
     return twins;
 }
@@ -241,9 +239,9 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     // The twin of each corner (the corner of the opposite direction of its edge), or the first
     // triangle that uses an edge twice in one direction.
     std::size_t pairs = 0;
-    std::optional<std::vector<std::uint32_t>> twins = twin_corners(nv, triangles, parts, pairs);
+    std::unique_ptr<std::uint32_t[]> twins = twin_corners(nv, triangles, parts, pairs);
     if (!twins) throw_first_repeated_edge(triangles);
-    const std::vector<std::uint32_t>& twin_of = *twins;
+    const std::uint32_t* twin_of = twins.get();
     // Corner j (directed edge tri[i] -> tri[i + 1]) gets halfedge 2e of a new edge e when it is
     // the first corner of its edge in soup order, the other halfedge of its twin's edge
     // otherwise. Each part numbers its first corners after those of the parts before it.
@@ -256,9 +254,7 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     const std::size_t ne = part_edges[parts];
     if (ne != nc - pairs) throw InternalError("from_soup: the twin pairs and the edges disagree");
     // The halfedge of every corner: first the first corners, then the others from their twins.
-    std::vector<std::uint32_t> corner_halfedge;
-    reserve_huge(corner_halfedge, nc);
-    corner_halfedge.resize(nc);
+    std::unique_ptr<std::uint32_t[]> corner_halfedge = uninitialized_huge_array<std::uint32_t>(nc);
     run_parts(parts, nc, [&](unsigned p, std::size_t b, std::size_t e) {
         std::uint32_t next_edge = part_edges[p];
         for (std::size_t j = b; j < e; ++j)
@@ -271,9 +267,14 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     // Every array is sized once and written in place. The first corner of each edge writes both
     // its halfedges, so that each part writes its own range of halfedges.
     m.positions_ = std::move(points);
-    for (auto* a : {&m.hto_, &m.hnext_, &m.hprev_, &m.hface_}) reserve_huge(*a, 2 * ne);
-    for (auto* a : {&m.hto_, &m.hnext_, &m.hprev_}) a->resize(2 * ne);
-    m.hface_.assign(2 * ne, kInvalid);
+    // The four halfedge arrays are sized (and their pages faulted in) by as many parts.
+    std::array<std::vector<std::uint32_t>*, 4> halfedge_arrays{&m.hto_, &m.hnext_, &m.hprev_, &m.hface_};
+    run_parts(std::min(parts, 4u), 4, [&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+            reserve_huge(*halfedge_arrays[i], 2 * ne);
+            halfedge_arrays[i]->assign(2 * ne, kInvalid);
+        }
+    });
     m.edeleted_.assign(ne, false);
     m.eprops_.resize(ne);
     m.fhalfedge_.resize(nf);
@@ -317,7 +318,7 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
         for (std::size_t v = 0; v < nv; ++v)
             if (m.vhalfedge_[v] == kInvalid) m.vhalfedge_[v] = part_vertex_halfedge[std::size_t(p)][v];
     twins.reset();
-    corner_halfedge = {};
+    corner_halfedge.reset();
     part_vertex_halfedge.clear();
     // Link boundary halfedges into loops; a vertex with two outgoing boundary halfedges is
     // pinched (non-manifold). The parts list their boundary halfedges; one pass links them in

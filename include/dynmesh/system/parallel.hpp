@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <memory>
 #include <thread>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -55,6 +57,16 @@ void run_parts(unsigned parts, std::size_t n, Fn&& fn) {
 /// (the whole 2 MiB pages inside the range; Linux, when THP is in "madvise" mode). Only advice:
 /// nothing changes when it is refused or unavailable.
 void advise_huge_pages(const void* data, std::size_t bytes) noexcept;
+
+/// An array of n trivially constructible elements, left uninitialized (no pass over memory
+/// that is about to be written anyway), with huge pages advised.
+template <class T>
+[[nodiscard]] std::unique_ptr<T[]> uninitialized_huge_array(std::size_t n) {
+    static_assert(std::is_trivially_default_constructible_v<T>);
+    std::unique_ptr<T[]> a(new T[n]);
+    advise_huge_pages(a.get(), n * sizeof(T));
+    return a;
+}
 
 /// Reserves room for n elements in an empty vector and advises huge pages for it; call before
 /// the first write (resize, assign) so that the pages are faulted in as huge pages.
