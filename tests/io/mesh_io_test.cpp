@@ -6,6 +6,8 @@
 #include <array>
 #include <bit>
 #include <charconv>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -371,6 +373,42 @@ TEST(MeshIo, StlIsBinaryAndReadsBackAsTheSameOrientedMesh) {
         return out;
     };
     EXPECT_EQ(faces(back), faces(mesh));
+    // Each record's normal is its triangle's outward unit normal, as float32.
+    std::ifstream in(dir / "m.stl", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto float_at = [&](std::size_t offset) {
+        std::array<char, 4> b{};
+        std::copy_n(bytes.begin() + std::ptrdiff_t(offset), 4, b.begin());
+        return double(std::bit_cast<float>(b));
+    };
+    std::size_t k = 0;
+    for (Face f : mesh.faces()) {
+        const auto v = mesh.face_vertices(f);
+        const Vec3 n = cross(mesh.position(v[1]) - mesh.position(v[0]), mesh.position(v[2]) - mesh.position(v[0]));
+        const Vec3 expected = n / norm(n);
+        const std::size_t at = 84 + 50 * k++;
+        EXPECT_NEAR(float_at(at), expected.x, 1e-7);
+        EXPECT_NEAR(float_at(at + 4), expected.y, 1e-7);
+        EXPECT_NEAR(float_at(at + 8), expected.z, 1e-7);
+        EXPECT_GT(dot(expected, mesh.position(v[0]) - Vec3{1, 2, 3}), 0.0);  // outward
+    }
+}
+
+TEST(MeshIo, StlRefusesCoordinatesBeyondFloat) {
+    const fs::path dir = test::scratch_dir("io_stl_range");
+    SurfaceMesh mesh = test::octahedron();
+    mesh.position(Vertex(4)).y = 1e39;  // finite as a double, infinite as a float
+    try {
+        write_mesh(mesh, dir / "m.stl");
+        ADD_FAILURE() << "a coordinate beyond float was written to STL";
+    } catch (const InvalidInput& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("vertex 4 has a coordinate beyond the float range STL stores"), std::string::npos) << msg;
+    }
+    EXPECT_TRUE(test::listing(dir).empty());
+    mesh.position(Vertex(4)).y = -3.0e38;  // within float range: written
+    write_mesh(mesh, dir / "m.stl");
+    EXPECT_EQ(read_mesh(dir / "m.stl").n_faces(), mesh.n_faces());
 }
 
 // ---- validation and atomicity -------------------------------------------------------------

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
@@ -89,8 +90,24 @@ std::vector<std::array<std::uint32_t, 3>> rotated_to_smallest(std::vector<std::a
 // Whatever the triangle order and the corner each triangle starts at, the mesh is valid and
 // reads back as the same soup (faces in input order, with their orientation), through either
 // overload.
+/// A closed bipyramid over a k-gon: two apices of valence k.
+SurfaceMesh bipyramid(std::uint32_t k) {
+    TriangleSoup s;
+    s.points = {{0, 0, 1}, {0, 0, -1}};
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const double a = 6.283185307179586 * i / k;
+        s.points.push_back({std::cos(a), std::sin(a), 0});
+    }
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const std::uint32_t r = 2 + i, q = 2 + (i + 1) % k;
+        s.triangles.push_back({0, r, q});
+        s.triangles.push_back({1, q, r});
+    }
+    return SurfaceMesh::from_soup(s);
+}
+
 TEST(SurfaceMesh, FromSoupRoundTripsAnyTriangleOrder) {
-    for (const SurfaceMesh& base : {test::icosphere(3), test::grid(9)}) {
+    for (const SurfaceMesh& base : {test::icosphere(3), test::grid(9), bipyramid(300)}) {
         TriangleSoup s = base.to_soup();
         Rng rng(7);
         for (std::size_t i = s.triangles.size(); i > 1; --i)
