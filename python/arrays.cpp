@@ -15,7 +15,7 @@ void require_shape(const py::array& a, const char* what, const char* rows, py::s
 
 namespace {
 
-/// Rows per thread in the conversions below (a million-vertex mesh goes to two threads).
+/// Rows per thread in the conversions below (at least; a million rows use up to three threads).
 constexpr std::size_t kRowsPerPart = std::size_t(1) << 18;
 
 template <class P, int D>

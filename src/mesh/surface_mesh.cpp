@@ -144,7 +144,7 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
     });
     fill.clear();
     std::unique_ptr<std::uint32_t[]> twins = uninitialized_huge_array<std::uint32_t>(nc);
-    run_parts(parts, nc, [&](unsigned, std::size_t b, std::size_t e) { std::fill(&twins[b], &twins[0] + e, kInvalid); });
+    run_parts(parts, nc, [&](unsigned, std::size_t b, std::size_t e) { std::fill(twins.get() + b, twins.get() + e, kInvalid); });
     struct Seen {
         std::uint32_t bucket = kInvalid;  // the bucket that last reached this vertex
         std::uint32_t corner = 0;         // its unpaired corner there; kInvalid once paired
@@ -153,6 +153,7 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
     std::vector<char> part_bad(parts, 0);
     run_parts(parts, nv, [&](unsigned p, std::size_t vb, std::size_t ve) {
         std::vector<Seen> seen(nv - vb);  // the larger ends of this part's buckets are >= vb
+        std::size_t found = 0;
         for (std::size_t v = vb; v < ve; ++v) {
             for (std::uint32_t e = begin[v]; e < begin[v + 1]; ++e) {
                 Seen& s = seen[entries[e].other - vb];
@@ -170,9 +171,10 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
                 twins[j] = k;
                 twins[k] = j;
                 s.corner = kInvalid;
-                ++part_pairs[p];
+                ++found;
             }
         }
+        part_pairs[p] = found;
     });
     if (std::find(part_bad.begin(), part_bad.end(), 1) != part_bad.end()) return nullptr;
     pairs = std::accumulate(part_pairs.begin(), part_pairs.end(), std::size_t(0));
@@ -200,14 +202,15 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
 }  // namespace
 
 SurfaceMesh SurfaceMesh::from_soup(const TriangleSoup& soup, const FromSoupOptions& options) {
-    return build(soup.points, soup.triangles, options.threads);
+    std::vector<Point3> points = soup.points;
+    return build(std::move(points), soup.triangles, options.threads);
 }
 
 SurfaceMesh SurfaceMesh::from_soup(TriangleSoup&& soup, const FromSoupOptions& options) {
     return build(std::move(soup.points), soup.triangles, options.threads);
 }
 
-SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Triangle> triangles, unsigned threads) {
+SurfaceMesh SurfaceMesh::build(std::vector<Point3>&& points, std::span<const Triangle> triangles, unsigned threads) {
     SurfaceMesh m;
     const std::size_t nv = points.size(), nf = triangles.size();
     if (nv >= kInvalid || nf >= kInvalid / 6) throw InvalidInput("from_soup: too many elements for 32-bit indices");
@@ -215,7 +218,7 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     // more than they save). Each check below throws at a part's first bad element; run_parts
     // rethrows the lowest part's, so the message names the first in the soup.
     const unsigned parts = threads == 0 ? parallel_parts(nf, std::size_t(1) << 17)
-                                        : unsigned(std::max<std::size_t>(1, std::min<std::size_t>(threads, nf)));
+                                        : unsigned(std::max<std::size_t>(1, std::min<std::size_t>({threads, nf, 64})));
     run_parts(std::min(parts, unsigned(std::max<std::size_t>(1, nv))), nv, [&](unsigned, std::size_t b, std::size_t e) {
         for (std::size_t i = b; i < e; ++i)
             if (!is_finite(points[i]))
@@ -248,7 +251,9 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     const auto first = [&](std::size_t j) { return twin_of[j] == kInvalid || twin_of[j] > j; };
     std::vector<std::uint32_t> part_edges(parts + 1, 0);
     run_parts(parts, nc, [&](unsigned p, std::size_t b, std::size_t e) {
-        for (std::size_t j = b; j < e; ++j) part_edges[p + 1] += first(j) ? 1 : 0;
+        std::uint32_t count = 0;
+        for (std::size_t j = b; j < e; ++j) count += first(j) ? 1 : 0;
+        part_edges[p + 1] = count;
     });
     std::partial_sum(part_edges.begin(), part_edges.end(), part_edges.begin());
     const std::size_t ne = part_edges[parts];
@@ -325,8 +330,10 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
     // halfedge order.
     std::vector<std::vector<std::uint32_t>> part_boundary(parts);
     run_parts(parts, m.hto_.size(), [&](unsigned p, std::size_t b, std::size_t e) {
+        std::vector<std::uint32_t> list;
         for (std::size_t h = b; h < e; ++h)
-            if (m.hface_[h] == kInvalid) part_boundary[p].push_back(std::uint32_t(h));
+            if (m.hface_[h] == kInvalid) list.push_back(std::uint32_t(h));
+        part_boundary[p] = std::move(list);
     });
     std::vector<std::uint32_t> boundary_out(nv, kInvalid);
     for (const auto& list : part_boundary)
@@ -364,8 +371,8 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3> points, std::span<const Trian
         }
     });
     for (std::uint32_t v : part_broken)
-        if (v != kInvalid)
-            throw TopologyError("from_soup: " + vstr(v) + " is non-manifold: its triangles form a broken fan");
+        if (v != kInvalid)  // next is a permutation by now: every fan closes
+            throw InternalError("from_soup: the fan of " + vstr(v) + " does not close");
     std::vector<std::uint32_t> part_pinched(parts, kInvalid);
     run_parts(parts, m.hto_.size(), [&](unsigned p, std::size_t b, std::size_t e) {
         for (std::size_t h = b; h < e; ++h)

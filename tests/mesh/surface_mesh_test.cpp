@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/random.hpp"
@@ -87,9 +91,6 @@ std::vector<std::array<std::uint32_t, 3>> rotated_to_smallest(std::vector<std::a
     return ts;
 }
 
-// Whatever the triangle order and the corner each triangle starts at, the mesh is valid and
-// reads back as the same soup (faces in input order, with their orientation), through either
-// overload.
 /// A closed bipyramid over a k-gon: two apices of valence k.
 SurfaceMesh bipyramid(std::uint32_t k) {
     TriangleSoup s;
@@ -106,6 +107,9 @@ SurfaceMesh bipyramid(std::uint32_t k) {
     return SurfaceMesh::from_soup(s);
 }
 
+// Whatever the triangle order and the corner each triangle starts at, the mesh is valid and
+// reads back as the same soup (faces in input order, with their orientation), through either
+// overload.
 TEST(SurfaceMesh, FromSoupRoundTripsAnyTriangleOrder) {
     for (const SurfaceMesh& base : {test::icosphere(3), test::grid(9), bipyramid(300)}) {
         TriangleSoup s = base.to_soup();
@@ -125,6 +129,12 @@ TEST(SurfaceMesh, FromSoupRoundTripsAnyTriangleOrder) {
         EXPECT_EQ(m2.to_soup().triangles, back.triangles);
         for (Face f : m.faces()) EXPECT_EQ(m2.halfedge(f), m.halfedge(f));
     }
+    // A soup it refuses keeps its points, even when handed over.
+    TriangleSoup refused = test::octahedron().to_soup();
+    refused.triangles.push_back(refused.triangles.front());
+    const std::size_t points = refused.points.size();
+    EXPECT_THROW((void)SurfaceMesh::from_soup(std::move(refused)), TopologyError);
+    EXPECT_EQ(refused.points.size(), points);  // NOLINT(bugprone-use-after-move): the documented guarantee
 }
 
 /// Every connectivity array of the mesh, in handle order (for comparing two builds).
@@ -141,43 +151,131 @@ std::vector<std::uint32_t> connectivity(const SurfaceMesh& m) {
     return out;
 }
 
-// The threads split the work, never the result: every connectivity array and every error
-// message is the same for 1, 2, 3 and 7 threads, on a closed and an open shuffled soup.
-TEST(SurfaceMesh, FromSoupIsTheSameForEveryThreadCount) {
+/// The arrays of connectivity() for a valid soup, by the documented rules applied one corner
+/// at a time: an edge is numbered when its first corner in soup order comes, that corner takes
+/// its even halfedge and the twin corner the odd one; a face's halfedge is its first corner's;
+/// a vertex's is its last corner's in soup order, or its outgoing boundary halfedge; boundary
+/// halfedges are linked to the boundary halfedge leaving their head.
+std::vector<std::uint32_t> reference_connectivity(const TriangleSoup& s) {
+    constexpr std::uint32_t none = 0xffffffffu;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edge;
+    std::vector<std::uint32_t> corner_h(3 * s.triangles.size());
+    for (std::size_t j = 0; j < corner_h.size(); ++j) {
+        const auto& t = s.triangles[j / 3];
+        const std::uint32_t a = t[j % 3], b = t[(j + 1) % 3];
+        const auto [it, fresh] = edge.try_emplace({std::min(a, b), std::max(a, b)}, std::uint32_t(edge.size()));
+        corner_h[j] = 2 * it->second + (fresh ? 0 : 1);
+    }
+    const std::size_t nh = 2 * edge.size();
+    std::vector<std::uint32_t> to(nh, none), next(nh, none), prev(nh, none), face(nh, none), vh(s.points.size(), none);
+    for (std::size_t j = 0; j < corner_h.size(); ++j) {
+        const auto& t = s.triangles[j / 3];
+        const std::uint32_t h = corner_h[j];
+        to[h] = t[(j + 1) % 3];
+        if (to[h ^ 1u] == none) to[h ^ 1u] = t[j % 3];
+        next[h] = corner_h[j - j % 3 + (j + 1) % 3];
+        prev[h] = corner_h[j - j % 3 + (j + 2) % 3];
+        face[h] = std::uint32_t(j / 3);
+        vh[t[j % 3]] = h;
+    }
+    std::map<std::uint32_t, std::uint32_t> boundary_leaving;
+    for (std::uint32_t h = 0; h < nh; ++h)
+        if (face[h] == none) boundary_leaving[to[h ^ 1u]] = h;
+    for (std::uint32_t h = 0; h < nh; ++h)
+        if (face[h] == none) {
+            next[h] = boundary_leaving.at(to[h]);
+            prev[next[h]] = h;
+            vh[to[h ^ 1u]] = h;
+        }
+    std::vector<std::uint32_t> out;
+    for (std::size_t h = 0; h < nh; ++h) out.insert(out.end(), {to[h], next[h], prev[h], face[h]});
+    out.insert(out.end(), vh.begin(), vh.end());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) out.push_back(corner_h[3 * t]);
+    return out;
+}
+
+/// from_soup's error message for the soup (or "accepted").
+std::string from_soup_message(const TriangleSoup& soup, unsigned threads) {
+    try {
+        (void)SurfaceMesh::from_soup(soup, {.threads = threads});
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+// The threads split the work, never the result: on closed and open shuffled soups, with
+// isolated vertices, with no triangles, every connectivity array equals the one-corner-at-a-
+// time model for 1, 2, 3 and 7 threads (and more threads than vertices).
+TEST(SurfaceMesh, FromSoupFollowsItsRulesForEveryThreadCount) {
+    std::vector<TriangleSoup> soups;
     for (const SurfaceMesh& base : {test::icosphere(4), test::grid(40)}) {
         TriangleSoup s = base.to_soup();
         Rng rng(11);
         for (std::size_t i = s.triangles.size(); i > 1; --i)
             std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
-        const SurfaceMesh one = SurfaceMesh::from_soup(s, {.threads = 1});
-        EXPECT_TRUE(check_mesh(one).ok());
-        for (unsigned threads : {2u, 3u, 7u})
-            EXPECT_EQ(connectivity(SurfaceMesh::from_soup(s, {.threads = threads})), connectivity(one))
-                << threads << " threads";
-        // Errors in several parts: the first in soup order is named, whatever the split.
-        const auto message = [&](const TriangleSoup& bad, unsigned threads) {
-            try {
-                (void)SurfaceMesh::from_soup(bad, {.threads = threads});
-            } catch (const Error& e) {
-                return std::string(e.what());
-            }
-            return std::string("accepted");
-        };
-        TriangleSoup out_of_range = s;
-        const std::size_t n = s.triangles.size();
-        out_of_range.triangles[n / 3][1] = std::uint32_t(s.points.size());
-        out_of_range.triangles[n - 2][0] = std::uint32_t(s.points.size() + 5);
-        TriangleSoup reversed = s;  // two faces turned over: edges used twice in one direction
-        for (std::size_t t : {n / 2, n - 1}) std::swap(reversed.triangles[t][0], reversed.triangles[t][1]);
-        TriangleSoup not_finite = s;
-        not_finite.points[s.points.size() / 4].y = std::nan("");
-        not_finite.points[s.points.size() - 1].z = INFINITY;
-        for (const TriangleSoup* bad : {&out_of_range, &reversed, &not_finite}) {
-            const std::string expected = message(*bad, 1);
-            EXPECT_NE(expected, "accepted");
-            for (unsigned threads : {2u, 3u, 7u}) EXPECT_EQ(message(*bad, threads), expected) << threads << " threads";
+        soups.push_back(s);
+    }
+    soups.push_back(soups.back());
+    for (int i = 0; i < 5; ++i) soups.back().points.push_back({10.0 + i, 0, 0});  // isolated
+    soups.push_back({{{0, 0, 0}, {1, 0, 0}}, {}});                               // no triangles
+    soups.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}});            // one
+    for (const TriangleSoup& s : soups) {
+        const std::vector<std::uint32_t> expected = reference_connectivity(s);
+        for (unsigned threads : {1u, 2u, 3u, 7u, 1000u}) {
+            const SurfaceMesh m = SurfaceMesh::from_soup(s, {.threads = threads});
+            EXPECT_EQ(connectivity(m), expected) << threads << " threads, " << s.triangles.size() << " triangles";
         }
     }
+}
+
+// Errors in several parts: the first in soup order is named, whatever the split. The first
+// bad element sits late in part 0 (or at the end of it), a later one at the start of part 1,
+// where a thread finds it first.
+TEST(SurfaceMesh, FromSoupNamesTheFirstErrorForEveryThreadCount) {
+    const TriangleSoup s = test::icosphere(4).to_soup();
+    const std::size_t n = s.triangles.size(), nv = s.points.size();
+    std::vector<std::pair<TriangleSoup, std::string>> cases;
+    TriangleSoup bad = s;
+    for (std::size_t t : {n / 3 - 1, n / 2 - 1, n / 2}) bad.triangles[t][1] = std::uint32_t(nv + t);
+    cases.push_back({bad, "triangle " + std::to_string(n / 3 - 1) + " uses vertex index"});
+    bad = s;
+    for (std::size_t t : {n / 3 - 1, n / 2}) bad.triangles[t][2] = bad.triangles[t][0];
+    cases.push_back({bad, "triangle " + std::to_string(n / 3 - 1) + " repeats a vertex"});
+    bad = s;
+    for (std::size_t t : {n / 3 - 1, n / 2}) std::swap(bad.triangles[t][0], bad.triangles[t][1]);
+    cases.push_back({bad, "is used twice in the same direction"});
+    bad = s;
+    bad.points[nv / 3 - 1].y = std::nan("");
+    bad.points[nv / 2].z = INFINITY;
+    cases.push_back({bad, "vertex " + std::to_string(nv / 3 - 1) + " has a non-finite coordinate"});
+    // Topology found by the parallel passes: two boundary fans at a vertex, an edge of four
+    // triangles, a vertex with two closed fans (two octahedra sharing their vertex 0).
+    TriangleSoup bowtie{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}};
+    cases.push_back({bowtie, "vertex 0 is non-manifold: it has two separate boundary fans"});
+    TriangleSoup four{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                      {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {1, 0, 5}}};
+    cases.push_back({four, "triangle 2: edge (0, 1) is used twice in the same direction"});
+    // A chain of three octahedra: the second shares the first's vertex 0, the third shares the
+    // second's last vertex (15 in all: 0 and 10 are pinched, in different parts).
+    const TriangleSoup octahedron = test::octahedron().to_soup();
+    TriangleSoup glued = octahedron;
+    for (const std::uint32_t at : {0u, 10u}) {
+        const auto base = std::uint32_t(glued.points.size()) - 1;  // octahedron vertex i > 0 -> base + i
+        for (std::uint32_t i = 1; i < octahedron.points.size(); ++i)
+            glued.points.push_back(octahedron.points[i] + Vec3{0, 0, 3.0 * (1 + base)});
+        for (auto tri : octahedron.triangles) {
+            for (auto& i : tri) i = i == 0 ? at : base + i;
+            glued.triangles.push_back(tri);
+        }
+    }
+    ASSERT_EQ(glued.points.size(), 16u);
+    cases.push_back({glued, "vertex 0 is non-manifold: its triangles form more than one fan"});
+    for (const auto& [soup, expected] : cases)
+        for (unsigned threads : {1u, 2u, 3u, 7u}) {
+            const std::string got = from_soup_message(soup, threads);
+            EXPECT_NE(got.find(expected), std::string::npos) << threads << " threads: " << got;
+        }
 }
 
 // Two closed octahedra glued at one vertex: every edge has two triangles and no boundary, but

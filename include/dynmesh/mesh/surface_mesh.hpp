@@ -44,8 +44,8 @@ class SurfaceMesh;
 /// setting).
 struct FromSoupOptions {
     /// Threads: 0 lets the machine decide (one per hardware thread, at most 8, each with at
-    /// least 2^17 triangles; one for a smaller soup), k uses k (at most one per triangle), 1
-    /// keeps to the calling thread.
+    /// least 2^17 triangles; one for a smaller soup), k uses k (at most 64, and at most one per
+    /// triangle), 1 keeps to the calling thread.
     unsigned threads = 0;
 };
 
@@ -144,7 +144,8 @@ public:
     ///        non-manifold (pinched) vertex. Each message names the triangle or vertex.
     ///        Unreferenced vertices are kept (isolated) and reported by check_mesh().
     static SurfaceMesh from_soup(const TriangleSoup& soup, const FromSoupOptions& options = {});
-    /// As above, taking the soup's points over instead of copying them.
+    /// As above, taking the soup's points over instead of copying them (a soup it refuses keeps
+    /// them).
     static SurfaceMesh from_soup(TriangleSoup&& soup, const FromSoupOptions& options = {});
     /// The inverse of from_soup (live elements only, in index order after compaction).
     [[nodiscard]] TriangleSoup to_soup() const;
@@ -352,7 +353,9 @@ public:
 
 private:
     friend class VertexHalfedgeRange::Iterator;
-    static SurfaceMesh build(std::vector<Point3> points, std::span<const std::array<std::uint32_t, 3>> triangles,
+    /// The mesh of the triangles over `points`, taken over (moved from) only once the soup is
+    /// accepted.
+    static SurfaceMesh build(std::vector<Point3>&& points, std::span<const std::array<std::uint32_t, 3>> triangles,
                              unsigned threads);
     Halfedge new_edge(Vertex from, Vertex to);  // returns the halfedge from -> to
     Face new_face();

@@ -27,8 +27,9 @@ namespace dynmesh {
 }
 
 /// Calls fn(p, begin, end) for each part p of [0, n) (part_range), part 0 on the calling thread
-/// and the others on threads of their own, and waits for all. When parts throw, the exception
-/// of the lowest-numbered one is rethrown after every part has ended.
+/// and the others on threads of their own (on the calling thread too when the system refuses a
+/// thread), and waits for all. When parts throw, the exception of the lowest-numbered one is
+/// rethrown after every part has ended.
 template <class Fn>
 void run_parts(unsigned parts, std::size_t n, Fn&& fn) {
     if (parts <= 1) {
@@ -45,9 +46,14 @@ void run_parts(unsigned parts, std::size_t n, Fn&& fn) {
         }
     };
     std::vector<std::thread> threads;
-    threads.reserve(parts - 1);
-    for (unsigned p = 1; p < parts; ++p) threads.emplace_back(run, p);
+    unsigned started = 1;  // parts 1 .. started - 1 run on threads of their own
+    try {
+        threads.reserve(parts - 1);
+        for (; started < parts; ++started) threads.emplace_back(run, started);
+    } catch (...) {  // no thread to be had: the parts left run here
+    }
     run(0);
+    for (unsigned p = started; p < parts; ++p) run(p);
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
