@@ -6,7 +6,6 @@
 #include <numeric>
 #include <utility>
 #include <set>
-#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -98,15 +97,14 @@ namespace {
 
 /// Corner j = 3t + i of a soup is the directed edge tri[i] -> tri[i + 1]. For each corner, the
 /// corner of the opposite direction on the same edge (kInvalid when there is none), when every
-/// edge is used at most once in each direction; null otherwise. `pairs` counts the twins.
+/// edge is used at most once in each direction; null otherwise.
 ///
 /// Corners are bucketed by the smaller end of their edge (a counting sort; each part of the
 /// triangles counts and fills its own share of every bucket, so buckets list corners in soup
 /// order whatever the number of parts). Within a bucket, the two corners of an edge meet at its
 /// larger end, which remembers the first of them until the second comes; parts of the buckets
 /// remember in arrays of their own.
-std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Triangle> triangles, unsigned parts,
-                                              std::size_t& pairs) {
+std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Triangle> triangles, unsigned parts) {
     const std::size_t nf = triangles.size(), nc = nf * 3;
     // fill[p][v]: first the number of part p's corners in bucket v, then where the next goes.
     std::vector<std::vector<std::uint32_t>> fill(parts);
@@ -149,11 +147,9 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
         std::uint32_t bucket = kInvalid;  // the bucket that last reached this vertex
         std::uint32_t corner = 0;         // its unpaired corner there; kInvalid once paired
     };
-    std::vector<std::size_t> part_pairs(parts, 0);
     std::vector<char> part_bad(parts, 0);
     run_parts(parts, nv, [&](unsigned p, std::size_t vb, std::size_t ve) {
         std::vector<Seen> seen(nv - vb);  // the larger ends of this part's buckets are >= vb
-        std::size_t found = 0;
         for (std::size_t v = vb; v < ve; ++v) {
             for (std::uint32_t e = begin[v]; e < begin[v + 1]; ++e) {
                 Seen& s = seen[entries[e].other - vb];
@@ -171,13 +167,10 @@ std::unique_ptr<std::uint32_t[]> twin_corners(std::size_t nv, std::span<const Tr
                 twins[j] = k;
                 twins[k] = j;
                 s.corner = kInvalid;
-                ++found;
             }
         }
-        part_pairs[p] = found;
     });
     if (std::find(part_bad.begin(), part_bad.end(), 1) != part_bad.end()) return nullptr;
-    pairs = std::accumulate(part_pairs.begin(), part_pairs.end(), std::size_t(0));
     return twins;
 }
 
@@ -219,7 +212,7 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3>&& points, std::span<const Tri
     // rethrows the lowest part's, so the message names the first in the soup.
     const unsigned parts = threads == 0 ? parallel_parts(nf, std::size_t(1) << 17)
                                         : unsigned(std::max<std::size_t>(1, std::min<std::size_t>({threads, nf, 64})));
-    run_parts(std::min(parts, unsigned(std::max<std::size_t>(1, nv))), nv, [&](unsigned, std::size_t b, std::size_t e) {
+    run_parts(parts, nv, [&](unsigned, std::size_t b, std::size_t e) {
         for (std::size_t i = b; i < e; ++i)
             if (!is_finite(points[i]))
                 throw InvalidInput("from_soup: " + vstr(static_cast<std::uint32_t>(i)) +
@@ -241,8 +234,7 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3>&& points, std::span<const Tri
     const std::size_t nc = nf * 3;
     // The twin of each corner (the corner of the opposite direction of its edge), or the first
     // triangle that uses an edge twice in one direction.
-    std::size_t pairs = 0;
-    std::unique_ptr<std::uint32_t[]> twins = twin_corners(nv, triangles, parts, pairs);
+    std::unique_ptr<std::uint32_t[]> twins = twin_corners(nv, triangles, parts);
     if (!twins) throw_first_repeated_edge(triangles);
     const std::uint32_t* twin_of = twins.get();
     // Corner j (directed edge tri[i] -> tri[i + 1]) gets halfedge 2e of a new edge e when it is
@@ -257,7 +249,6 @@ SurfaceMesh SurfaceMesh::build(std::vector<Point3>&& points, std::span<const Tri
     });
     std::partial_sum(part_edges.begin(), part_edges.end(), part_edges.begin());
     const std::size_t ne = part_edges[parts];
-    if (ne != nc - pairs) throw InternalError("from_soup: the twin pairs and the edges disagree");
     // The halfedge of every corner: first the first corners, then the others from their twins.
     std::unique_ptr<std::uint32_t[]> corner_halfedge = uninitialized_huge_array<std::uint32_t>(nc);
     run_parts(parts, nc, [&](unsigned p, std::size_t b, std::size_t e) {

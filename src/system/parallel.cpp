@@ -9,10 +9,9 @@
 
 namespace dynmesh {
 
-unsigned parallel_parts(std::size_t n, std::size_t min_per_part, unsigned limit) {
+unsigned parallel_parts(std::size_t n, std::size_t min_per_part) {
     if (min_per_part == 0) min_per_part = 1;
-    unsigned parts = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-    if (limit != 0) parts = std::min(parts, limit);
+    const unsigned parts = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
     return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(parts, n / min_per_part)));
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <utility>
@@ -85,6 +86,30 @@ TEST(SurfaceMesh, FromSoupRejectsBadTopology) {
     EXPECT_THROW((void)SurfaceMesh::from_soup(s), InvalidInput);
 }
 
+/// The soup's triangles in a random order (Fisher-Yates with the seed).
+void shuffle_triangles(TriangleSoup& s, std::uint64_t seed) {
+    Rng rng(seed);
+    for (std::size_t i = s.triangles.size(); i > 1; --i) std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
+}
+
+/// Octahedra chained at single vertices: the first alone, then one more for each entry of
+/// `at`, sharing its vertex 0 with that vertex of the soup so far (its others are new,
+/// numbered after the soup's).
+TriangleSoup glued_octahedra(std::initializer_list<std::uint32_t> at) {
+    const TriangleSoup octahedron = test::octahedron().to_soup();
+    TriangleSoup glued = octahedron;
+    for (const std::uint32_t shared : at) {
+        const auto base = std::uint32_t(glued.points.size()) - 1;  // octahedron vertex i > 0 -> base + i
+        for (std::uint32_t i = 1; i < octahedron.points.size(); ++i)
+            glued.points.push_back(octahedron.points[i] + Vec3{0, 0, 3.0 * (1 + base)});
+        for (auto tri : octahedron.triangles) {
+            for (auto& i : tri) i = i == 0 ? shared : base + i;
+            glued.triangles.push_back(tri);
+        }
+    }
+    return glued;
+}
+
 /// The triangles, each rotated to start at its smallest index (orientation kept).
 std::vector<std::array<std::uint32_t, 3>> rotated_to_smallest(std::vector<std::array<std::uint32_t, 3>> ts) {
     for (auto& t : ts) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
@@ -113,9 +138,8 @@ SurfaceMesh bipyramid(std::uint32_t k) {
 TEST(SurfaceMesh, FromSoupRoundTripsAnyTriangleOrder) {
     for (const SurfaceMesh& base : {test::icosphere(3), test::grid(9), bipyramid(300)}) {
         TriangleSoup s = base.to_soup();
-        Rng rng(7);
-        for (std::size_t i = s.triangles.size(); i > 1; --i)
-            std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
+        shuffle_triangles(s, 7);
+        Rng rng(8);  // the corner each triangle starts at
         for (auto& t : s.triangles) std::rotate(t.begin(), t.begin() + rng.below(3), t.end());
         const SurfaceMesh m = SurfaceMesh::from_soup(s);
         const auto r = check_mesh(m);
@@ -211,9 +235,7 @@ TEST(SurfaceMesh, FromSoupFollowsItsRulesForEveryThreadCount) {
     std::vector<TriangleSoup> soups;
     for (const SurfaceMesh& base : {test::icosphere(4), test::grid(40)}) {
         TriangleSoup s = base.to_soup();
-        Rng rng(11);
-        for (std::size_t i = s.triangles.size(); i > 1; --i)
-            std::swap(s.triangles[i - 1], s.triangles[rng.below(i)]);
+        shuffle_triangles(s, 11);
         soups.push_back(s);
     }
     soups.push_back(soups.back());
@@ -258,17 +280,7 @@ TEST(SurfaceMesh, FromSoupNamesTheFirstErrorForEveryThreadCount) {
     cases.push_back({four, "triangle 2: edge (0, 1) is used twice in the same direction"});
     // A chain of three octahedra: the second shares the first's vertex 0, the third shares the
     // second's last vertex (15 in all: 0 and 10 are pinched, in different parts).
-    const TriangleSoup octahedron = test::octahedron().to_soup();
-    TriangleSoup glued = octahedron;
-    for (const std::uint32_t at : {0u, 10u}) {
-        const auto base = std::uint32_t(glued.points.size()) - 1;  // octahedron vertex i > 0 -> base + i
-        for (std::uint32_t i = 1; i < octahedron.points.size(); ++i)
-            glued.points.push_back(octahedron.points[i] + Vec3{0, 0, 3.0 * (1 + base)});
-        for (auto tri : octahedron.triangles) {
-            for (auto& i : tri) i = i == 0 ? at : base + i;
-            glued.triangles.push_back(tri);
-        }
-    }
+    const TriangleSoup glued = glued_octahedra({0, 10});
     ASSERT_EQ(glued.points.size(), 16u);
     cases.push_back({glued, "vertex 0 is non-manifold: its triangles form more than one fan"});
     for (const auto& [soup, expected] : cases)
@@ -281,15 +293,7 @@ TEST(SurfaceMesh, FromSoupNamesTheFirstErrorForEveryThreadCount) {
 // Two closed octahedra glued at one vertex: every edge has two triangles and no boundary, but
 // the shared vertex has two fans.
 TEST(SurfaceMesh, FromSoupRejectsClosedPinchedVertex) {
-    TriangleSoup a = test::octahedron().to_soup();
-    const auto n = static_cast<std::uint32_t>(a.points.size());
-    TriangleSoup s = a;
-    for (std::size_t i = 1; i < a.points.size(); ++i) s.points.push_back(a.points[i] + Vec3{0, 0, 3});
-    // Vertex 0 of the copy is vertex 0 itself; the others are shifted by n - 1.
-    for (auto t : a.triangles) {
-        for (auto& i : t) i = i == 0 ? 0 : i + n - 1;
-        s.triangles.push_back(t);
-    }
+    const TriangleSoup s = glued_octahedra({0});
     try {
         (void)SurfaceMesh::from_soup(s);
         FAIL() << "a vertex with two closed fans was accepted";

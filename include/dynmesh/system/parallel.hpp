@@ -17,9 +17,8 @@
 namespace dynmesh {
 
 /// The number of parts for n items: 1 when n < 2 * min_per_part, else as many as the machine
-/// has hardware threads (at most 8, and at most `limit` when it is not 0), each part at least
-/// min_per_part items.
-[[nodiscard]] unsigned parallel_parts(std::size_t n, std::size_t min_per_part, unsigned limit = 0);
+/// has hardware threads (at most 8), each part at least min_per_part items.
+[[nodiscard]] unsigned parallel_parts(std::size_t n, std::size_t min_per_part);
 
 /// Part p of `parts` contiguous parts of [0, n): [n p / parts, n (p + 1) / parts).
 [[nodiscard]] inline std::pair<std::size_t, std::size_t> part_range(unsigned p, unsigned parts, std::size_t n) {
