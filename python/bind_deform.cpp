@@ -92,7 +92,7 @@ void bind_deform(py::module_& m) {
                                 "t = 1, 2, ... and update() when it says update_due.")
         .def(py::init([](const Doubles& positions, double lambda_, double kappa, std::optional<double> h0,
                          std::optional<int> horizon, std::optional<py::array> reference_faces, bool emergency_steps,
-                         std::uint64_t seed) {
+                         std::uint64_t seed, std::size_t max_substeps) {
                  auto self = std::make_unique<PyDeformingMesh>();
                  const std::vector<Point3> p = points3_of(positions, "positions");
                  DeformOptions params;
@@ -102,6 +102,7 @@ void bind_deform(py::module_& m) {
                  if (horizon) params.horizon = *horizon;
                  params.emergency_steps = emergency_steps;
                  params.seed = seed;
+                 params.max_substeps = max_substeps;
                  InitialSurface initial;
                  if (reference_faces) {
                      self->reference = std::make_unique<SurfaceMesh>(SurfaceMesh::from_soup(soup_of(p, *reference_faces)));
@@ -114,12 +115,15 @@ void bind_deform(py::module_& m) {
              py::arg("positions"), py::arg("lambda_"), py::arg("kappa") = kPracticalKappa, py::arg("h0") = py::none(),
              py::arg("horizon") = py::none(), py::arg("reference_faces") = py::none(),
              py::arg("emergency_steps") = true, py::arg("seed") = 1,
+             py::arg("max_substeps") = DeformOptions{}.max_substeps,
              "positions: the samples at t = 0, (n, 3). lambda_: how far any surface point moves in one\n"
              "time unit at most. kappa: the step constant (next step floor(R / (kappa lambda)) later).\n"
              "h0: the sampling radius (estimated when None). horizon: no step after this time.\n"
              "reference_faces: faces (m, 3) over the positions of a closed mesh of the surface at\n"
              "t = 0 (the first mesh is the restricted Delaunay triangulation of the net against it;\n"
-             "without it the mesh is reconstructed from the samples, which must then be dense).")
+             "without it the mesh is reconstructed from the samples, which must then be dense).\n"
+             "max_substeps: advance() cuts a time unit into at most this many sub-steps when the\n"
+             "samples move faster than the schedule allows (1: off).")
         .def(
             "advance",
             [](PyDeformingMesh& self, int t, const Doubles& positions) {
@@ -131,6 +135,9 @@ void bind_deform(py::module_& m) {
                 d["emergency"] = s.emergency;
                 d["max_displacement"] = s.max_displacement;
                 d["R"] = s.R;
+                d["substeps"] = s.substeps;
+                d["internal_updates"] = s.internal_updates;
+                d["max_strain_ratio"] = s.max_strain_ratio;
                 d["violations"] = violations_list(s.violations);
                 return d;
             },

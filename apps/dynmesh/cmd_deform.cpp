@@ -33,6 +33,8 @@ struct DeformArgs {
     double speed = 1.0;
     std::string schedule = "paper";
     double kappa = kPracticalKappa;
+    std::size_t max_substeps = DeformOptions{}.max_substeps;
+    double size_factor = DeformOptions{}.size_factor;
     std::uint64_t seed = 1;
     std::string out;
     std::string format = "vtp";
@@ -76,6 +78,10 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     j["time_units"] = r.time_units;
     j["updates"] = r.updates;
     j["emergency_updates"] = r.emergency_updates;
+    j["substeps"] = r.substeps;
+    j["max_substeps_per_unit"] = r.max_substeps_per_unit;
+    j["internal_updates"] = r.internal_updates;
+    j["max_strain_ratio"] = r.max_strain_ratio;
     j["flips"] = r.flips;
     j["insertions"] = r.insertions;
     j["removals"] = r.removals;
@@ -188,6 +194,8 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     DeformRunOptions ro;
     ro.schedule = schedule;
     ro.params.kappa = a.kappa;
+    ro.params.max_substeps = a.max_substeps;
+    ro.params.size_factor = a.size_factor;
     ro.params.seed = a.seed;
     ro.measure_every = a.measure_every;
     ro.measure.self_intersections = !a.no_self_intersections;
@@ -241,10 +249,10 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     if (!a.common.quiet)
         for (const std::string& w : r.warnings) std::cerr << "dynmesh deform: warning: " << w << "\n";
     if (!a.common.quiet) {
-        std::printf("%s: %zu samples, %d time units, %zu updates (%zu emergency), %zu flips, %zu insertions, "
-                    "%zu removals, %.3f s in updates\n",
-                    r.scenario.c_str(), r.samples, r.time_units, r.updates, r.emergency_updates, r.flips,
-                    r.insertions, r.removals, r.seconds_updates);
+        std::printf("%s: %zu samples, %d time units, %zu updates (%zu emergency), %zu sub-steps (at most %zu "
+                    "per unit, %zu updates between them), %zu flips, %zu insertions, %zu removals, %.3f s in updates\n",
+                    r.scenario.c_str(), r.samples, r.time_units, r.updates, r.emergency_updates, r.substeps,
+                    r.max_substeps_per_unit, r.internal_updates, r.flips, r.insertions, r.removals, r.seconds_updates);
         std::printf("worst over all time units: Hausdorff/eps %.3f, min angle %.2f deg, radius-edge %.2f, "
                     "R/eps %.2f, normal deviation %.2f deg, self-intersections %zu, inverted %zu\n",
                     r.worst_hausdorff_over_eps, r.worst_min_angle_deg, r.worst_max_radius_edge, r.worst_R_over_h,
@@ -289,6 +297,17 @@ void register_deform(CLI::App& root, int& result) {
         ->capture_default_str()
         ->check(finite_number())
         ->check(CLI::PositiveNumber);
+    sub->add_option("--max-substeps", args->max_substeps,
+                    "Cut a time unit into at most this many sub-steps when vertices move faster relative to their "
+                    "neighbours than 2R/kappa between updates (1: off, the paper's schedule alone)")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
+    sub->add_option("--size-factor", args->size_factor,
+                    "Local size field: a sample's size is min(R, F * local feature size) in place of the global R "
+                    "(thin parts get vertices across them; 0: off, the paper's global R)")
+        ->capture_default_str()
+        ->check(finite_number())
+        ->check(CLI::NonNegativeNumber);
     sub->add_option("--seed", args->seed, "Random seed of the samples")->capture_default_str();
     sub->add_option("--out", args->out,
                     "Output directory: mesh_NNNNN.<format> per time unit, mesh.pvd (vtp), log.csv, summary.json, "

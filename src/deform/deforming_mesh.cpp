@@ -8,6 +8,7 @@
 
 #include "dynmesh/deform/initial_mesh.hpp"
 #include "dynmesh/deform/local_ops.hpp"
+#include "dynmesh/deform/size_field.hpp"
 #include "dynmesh/deform/scenario.hpp"
 #include "dynmesh/error.hpp"
 #include "dynmesh/flips/flip_smooth.hpp"
@@ -20,6 +21,7 @@
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
+#include "rigid_fit.hpp"
 
 namespace dynmesh {
 
@@ -43,6 +45,7 @@ std::string_view to_string(Violation v) {
         case Violation::TopologyRollback: return "rollback";
         case Violation::Coarsened: return "coarsened";
         case Violation::InitFallback: return "init_fallback";
+        case Violation::SubstepCapHit: return "substep_cap_hit";
     }
     return "unknown";
 }
@@ -133,6 +136,19 @@ struct DeformingMesh::Impl {
     std::size_t folded_now = 0;  ///< as measured by the last advance()  ///< edges with edge-angle <= 90 at the end of the last update
     std::size_t live = 0;
 
+    /// size_factor * lfs of each slot, graded (+inf: no bound; NaN: not yet known, a sample
+    /// inserted after t = 0 until it is placed). Empty when the size field is off.
+    std::vector<double> size;
+    /// The local size of a sample against the pass-level R: min(R, size) (R when off).
+    [[nodiscard]] double rs(SampleId s, double R) const {
+        return size.empty() || !(size[s] < R) ? R : size[s];
+    }
+    /// Gives a sample inserted after t = 0 its size from its nearest vertex w at distance d.
+    void inherit_size(SampleId p, SampleId w, double d) {
+        if (!size.empty() && std::isnan(size[p]))
+            size[p] = w == kNoSample ? std::numeric_limits<double>::infinity() : size[w] + params.grading * d;
+    }
+
     // ---- small helpers --------------------------------------------------------------------
     void violation(Violation kind, std::string detail) {
         ViolationRecord r{t, kind, std::move(detail)};
@@ -158,6 +174,7 @@ struct DeformingMesh::Impl {
         return slot;
     }
     void grow(std::size_t n) {
+        size.resize(n, std::numeric_limits<double>::quiet_NaN());
         pos.resize(n);
         state.resize(n, State::Dead);
         owner.resize(n, kNoSample);
@@ -396,10 +413,12 @@ struct DeformingMesh::Impl {
             }
             const double R = max_circumradius();
             std::vector<SampleId> S;
+            bool local = false;  // a sample was promoted by its local size below R
             for (SampleId p = 0; p < state.size(); ++p) {
                 if (state[p] != State::Dormant) continue;
                 ++cur.distance_evals;
-                if (distance(P(p), P(owner[p])) > R / 3) {
+                if (distance(P(p), P(owner[p])) > rs(p, R) / 3) {
+                    if (!(rs(p, R) >= R)) local = true;
                     detach(p);
                     state[p] = State::Pending;
                     S.push_back(p);
@@ -411,7 +430,9 @@ struct DeformingMesh::Impl {
                 place(S, grid, R);
             }
             global_flip();
-            if (max_circumradius() > 2 * R / 3) return;
+            // The paper's stop, and with a size field no promotion below R in this pass
+            // (spec §10.2): where r < R the pass-level R need not drop.
+            if (max_circumradius() > 2 * R / 3 && !local) return;
         }
     }
 
@@ -422,7 +443,8 @@ struct DeformingMesh::Impl {
             const auto [w, d] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                              [&](std::uint32_t s) { return state[s] == State::Vertex; });
             ++cur.distance_evals;
-            if (w != kNoSample && d <= R / 3)
+            inherit_size(p, w, d);
+            if (w != kNoSample && d <= rs(p, R) / 3)
                 attach(p, w);
             else
                 add_sample(p, grid, R);
@@ -572,7 +594,6 @@ struct DeformingMesh::Impl {
     /// Returns the number of vertices it removed.
     std::size_t decimation(double factor = 0.5) {
         const double R = max_circumradius();
-        const double rad = factor * R;
         PointGrid grid = vertex_grid(R);
         std::vector<SampleId> vs;
         for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
@@ -580,10 +601,10 @@ struct DeformingMesh::Impl {
         std::vector<char> black(state.size(), 0);
         for (SampleId v : vs) {
             if (black[v]) continue;
-            grid.for_each_candidate(P(v), rad, [&](std::uint32_t w) {
+            grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
                 if (w == v || state[w] != State::Vertex) return;
                 ++cur.distance_evals;
-                if (distance(P(w), P(v)) < rad) black[w] = 1;
+                if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
             });
         }
         PointGrid white(R);
@@ -623,13 +644,165 @@ struct DeformingMesh::Impl {
         }
     }
 
+    // ---- sub-stepping (spec §10.1) -----------------------------------------------------------
+    /// Relative displacement since the last update: of each edge's ends (by edge index; the
+    /// connectivity does not change between updates) and of each dormant sample and its owner
+    /// (by slot). Reset by every update.
+    std::vector<double> strain_e, strain_d;
+    /// How far a pair's relative displacement may go between two updates: 2 R / kappa, the
+    /// floor schedule's allowance 2 lambda floor(R / (kappa lambda)) when the model holds;
+    /// 2 min(r_a, r_b) / kappa for a pair (a, b) with the size field.
+    [[nodiscard]] double budget() const { return 2 * R_last / params.kappa; }
+
+    /// Calls f(k, a, b) for every pair the budget covers: mesh edges (k = edge index) and
+    /// dormant samples with their owners (k = edges_size() + slot); strain(k) is its strain.
+    template <class F>
+    void for_each_pair(F&& f) const {
+        for (Edge e : mesh.edges()) {
+            const Halfedge h = SurfaceMesh::halfedge(e, 0);
+            f(e.idx(), sid(mesh.from_vertex(h)), sid(mesh.to_vertex(h)));
+        }
+        const std::size_t ne = mesh.edges_size();
+        for (SampleId s = 0; s < pos.size(); ++s)
+            if (state[s] == State::Dormant) f(ne + s, s, owner[s]);
+    }
+    double& strain(std::size_t k) {
+        return k < strain_e.size() ? strain_e[k] : strain_d[k - strain_e.size()];
+    }
+    /// How far a and b move relative to each other when every sample goes from pos to `to`,
+    /// apart from the rotation `turn` of the whole (a rigid motion moves no pair).
+    [[nodiscard]] double relative_move(const std::vector<Point3>& to, SampleId a, SampleId b,
+                                       const detail::Mat3& turn) const {
+        return norm((to[b] - to[a]) - turn * (pos[b] - pos[a]));
+    }
+    /// Largest (strain + relative move) / budget over the pairs when every sample goes from
+    /// pos to `to` (the move alone, when !with_strain).
+    [[nodiscard]] double strain_ratio(const std::vector<Point3>& to, const detail::Mat3& turn, bool with_strain) {
+        double worst = 0;
+        for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
+            const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
+            worst = std::max(worst, ((with_strain ? strain(k) : 0.0) + relative_move(to, a, b, turn)) / B);
+        });
+        return worst;
+    }
+    /// Moves every sample that is not dead to `to` (slot order); with `track`, each pair's
+    /// relative move (apart from `turn`) is added to its strain.
+    void move_samples(const std::vector<Point3>& to, bool track, const detail::Mat3& turn = {}) {
+        if (track)
+            for_each_pair([&](std::size_t k, SampleId a, SampleId b) { strain(k) += relative_move(to, a, b, turn); });
+        for (SampleId s = 0; s < pos.size(); ++s)
+            if (state[s] != State::Dead) pos[s] = to[s];
+        for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
+        touch();
+    }
+
+    /// Moves the samples from pos to `to` in n = ceil(max relative move / budget) equal
+    /// sub-steps (at most max_substeps), the relative move measured apart from the best-fit
+    /// rotation of the whole (fit_rigid: rotation G about axis a by angle phi, centroids c0 and
+    /// c1). Sub-step k places slot s at c0 + f (c1 - c0) + G(f)(from_s - c0) + f res_s, with
+    /// f = k / n, G(f) the turn by f phi about a and res_s = to_s - c1 - G(1)(from_s - c0)
+    /// (from_s + f (to_s - from_s) when phi = 0); sub-step n at to exactly. Before a sub-step
+    /// that would take some pair's strain beyond the budget, an internal update runs.
+    void substep_to(const std::vector<Point3>& to, StepReport& rep) {
+        if (params.max_substeps <= 1 || !(budget() > 0) || !std::isfinite(budget())) {
+            move_samples(to, false);
+            return;
+        }
+        const std::vector<Point3> from = pos;
+        const detail::RigidFit fit =
+            detail::fit_rigid(from, to, [&](std::size_t s) { return state[s] != State::Dead; });
+        const double need = std::ceil(strain_ratio(to, fit.rotation(), false));
+        std::size_t n = 1;
+        if (need > static_cast<double>(params.max_substeps)) {
+            n = params.max_substeps;
+            violation(Violation::SubstepCapHit, "the unit needs " + std::to_string(need) + " sub-steps; " +
+                                                    std::to_string(n) + " used (max_substeps)");
+        } else if (need > 1) {
+            n = static_cast<std::size_t>(need);
+        }
+        rep.substeps = n;
+        std::vector<Point3> at(pos.size());
+        const detail::Mat3 full = fit.rotation(), step = fit.rotation(1.0 / static_cast<double>(n));
+        for (std::size_t k = 1; k <= n; ++k) {
+            const double f = static_cast<double>(k) / static_cast<double>(n);
+            if (k == n) {
+                at = to;
+            } else if (fit.angle == 0) {
+                for (std::size_t s = 0; s < at.size(); ++s) at[s] = from[s] + (to[s] - from[s]) * f;
+            } else {
+                const detail::Mat3 turn = fit.rotation(f);
+                const Point3 c = fit.c_from + (fit.c_to - fit.c_from) * f;
+                for (std::size_t s = 0; s < at.size(); ++s) {
+                    const Vec3 res = to[s] - fit.c_to - full * (from[s] - fit.c_from);
+                    at[s] = c + turn * (from[s] - fit.c_from) + res * f;
+                }
+            }
+            double ratio = strain_ratio(at, step, true);
+            if (ratio > 1) {
+                const DeformUpdateReport u = mesh_update(true);
+                rep.internal += u.counters;
+                ++rep.internal_updates;
+                ratio = strain_ratio(at, step, true);
+            }
+            rep.max_strain_ratio = std::max(rep.max_strain_ratio, ratio);
+            move_samples(at, true, step);
+        }
+    }
+
+    /// MeshUpdate at the current positions: RefineVert, the queued insertions and deletions
+    /// (not when `internal`, an update between integer times), the spacing repair, the ball
+    /// check, the next step.
+    DeformUpdateReport mesh_update(bool internal) {
+        const auto t0 = Clock::now();
+        DeformUpdateReport rep;
+        rep.t = t;
+        rep.emergency = !internal && emergency_requested;
+        cur = {};
+        rep.R_before = max_circumradius();
+        rep.vertices_before = mesh.n_vertices();
+        const bool broken = !internal && folded_now > folded_at_step;
+        if (broken) rebuild();
+        refine_vert();
+        if (!internal) {
+            insertion();
+            deletion();
+        }
+        spacing_repair();
+        if (rep.emergency && (folded_edges() > folded_at_step || has_self_intersections(mesh))) {
+            rebuild();
+            refine_vert();
+        }
+        report_balls(internal ? "after a sub-step update's global flips" : "after the update's global flips");
+        schedule();
+        finish_update();
+        if (!internal) emergency_requested = false;
+        rep.R_after = R_last;
+        if (rep.R_before > 0 && rep.R_after > kCoarseningWarningFactor * rep.R_before)
+            violation(Violation::Coarsened, "the update coarsened the mesh: R " + std::to_string(rep.R_before) + " -> " +
+                                                std::to_string(rep.R_after) + " (" +
+                                                std::to_string(rep.R_after / rep.R_before) + "x), vertices " +
+                                                std::to_string(rep.vertices_before) + " -> " +
+                                                std::to_string(mesh.n_vertices()));
+        rep.next_step = next;
+        rep.samples = live;
+        rep.vertices = mesh.n_vertices();
+        cur.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        rep.counters = cur;
+        totals += cur;
+        ++n_updates;
+        return rep;
+    }
+
     // ---- MeshUpdate ---------------------------------------------------------------------------
     void schedule() {
         const double R = max_circumradius();
         const double steps = std::floor(R / (params.kappa * params.lambda));
         int delta = 1;
         if (!(steps >= 1)) {
-            violation(Violation::StepTooShort, "floor(R / (kappa lambda)) = 0 with R = " + std::to_string(R) +
+            // With sub-stepping the budget keeps the motion within the model inside every
+            // unit, so a step of 0 units is no violation: the next update is one unit on.
+            if (params.max_substeps <= 1)
+                violation(Violation::StepTooShort, "floor(R / (kappa lambda)) = 0 with R = " + std::to_string(R) +
                                                    ", kappa = " + std::to_string(params.kappa) +
                                                    ", lambda = " + std::to_string(params.lambda) +
                                                    ": the motion is too fast for this sampling; updating every unit");
@@ -643,6 +816,8 @@ struct DeformingMesh::Impl {
 
     void finish_update() {
         mesh.garbage_collection();
+        strain_e.assign(mesh.edges_size(), 0.0);
+        strain_d.assign(pos.size(), 0.0);
         std::fill(vert_of.begin(), vert_of.end(), Vertex());
         for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
         folded_at_step = folded_now = folded_edges();
@@ -707,6 +882,43 @@ struct DeformingMesh::Impl {
         canonicalize();
         ++cur.rebuilds;
         violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
+    }
+
+    /// The size field at t = 0 (DeformOptions::size_factor): from the caller's feature sizes,
+    /// the reference mesh (estimated and graded there, then carried to each sample from its
+    /// nearest reference vertex) or the analytic surface.
+    void initial_size(std::span<const Point3> positions, const InitialSurface& initial) {
+        if (!(params.size_factor > 0)) return;
+        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> by_id(positions.size(), inf);
+        if (!initial.feature_size.empty()) {
+            if (initial.feature_size.size() != positions.size())
+                throw InvalidInput("deform: " + std::to_string(initial.feature_size.size()) + " feature sizes for " +
+                                   std::to_string(positions.size()) + " samples");
+            for (std::size_t i = 0; i < by_id.size(); ++i) {
+                const double f = initial.feature_size[i];
+                if (!(f > 0)) throw InvalidInput("deform: the feature size of " + id_str(static_cast<SampleId>(i)) +
+                                                 " is not positive");
+                by_id[i] = params.size_factor * f;
+            }
+        } else if (initial.reference != nullptr) {
+            const SurfaceMesh& ref = *initial.reference;
+            const std::vector<double> r = graded_size(ref, mesh_feature_size(ref), params.size_factor, params.grading, inf);
+            PointGrid g(init.h0);
+            for (Vertex v : ref.vertices()) g.insert(static_cast<std::uint32_t>(v.idx()), ref.position(v));
+            const auto at = [&](std::uint32_t i) { return ref.position(Vertex(i)); };
+            for (std::size_t i = 0; i < by_id.size(); ++i) {
+                const auto [w, d] = g.nearest(positions[i], at, [](std::uint32_t) { return true; });
+                if (w != std::numeric_limits<std::uint32_t>::max()) by_id[i] = r[w] + params.grading * d;
+            }
+        } else if (initial.surface != nullptr) {
+            for (std::size_t i = 0; i < by_id.size(); ++i)
+                by_id[i] = params.size_factor * initial.surface->local_feature_size(positions[i]);
+        } else {
+            return;
+        }
+        size.assign(pos.size(), inf);
+        for (std::size_t i = 0; i < by_id.size(); ++i) size[slot_of[i]] = by_id[i];
     }
 
     /// Step 1 of §4.1: h0 given, or estimated from the surface, the reference, the initial
@@ -936,6 +1148,7 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformOpti
 
     // 1-4 of §4.1: h0, Vert(0), dormant lists, Tri(0)
     I.init.h0 = I.initial_h0(positions, initial);
+    I.initial_size(positions, initial);
     I.initial_triangulation(positions, I.init.h0, initial);
     {
         const auto rep = check_mesh(I.mesh, MeshCheckOptions{.require_closed = true});
@@ -1003,19 +1216,23 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     rep.t = t;
     const int dt = t - I.t;
     I.t = t;
+    // The positions at t, in slot order (dead slots keep theirs).
+    std::vector<Point3> to(I.pos.size());
     double maxd = 0;
     SampleId worst = kNoSample;
     for (SampleId s = 0; s < I.pos.size(); ++s) {
-        if (I.state[s] == State::Dead) continue;
-        const Point3& p = positions[I.ext[s]];
-        const double d = distance(p, I.pos[s]);
+        if (I.state[s] == State::Dead) {
+            to[s] = I.pos[s];
+            continue;
+        }
+        to[s] = positions[I.ext[s]];
+        const double d = distance(to[s], I.pos[s]);
         if (d > maxd) {
             maxd = d;
             worst = s;
         }
-        I.pos[s] = p;
     }
-    for (Vertex v : I.mesh.vertices()) I.mesh.position(v) = I.pos[I.sid(v)];
+    I.substep_to(to, rep);
     I.touch();
     rep.max_displacement = maxd;
     bool trip = false;
@@ -1061,41 +1278,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
 DeformUpdateReport DeformingMesh::update() {
     Impl& I = *impl_;
     I.pending_violations.clear();
-    const auto t0 = Clock::now();
-    DeformUpdateReport rep;
-    rep.t = I.t;
-    rep.emergency = I.emergency_requested;
-    I.cur = {};
-    rep.R_before = I.max_circumradius();
-    rep.vertices_before = I.mesh.n_vertices();
-    const bool broken = I.folded_now > I.folded_at_step;
-    if (broken) I.rebuild();
-    I.refine_vert();
-    I.insertion();
-    I.deletion();
-    I.spacing_repair();
-    if (rep.emergency && (I.folded_edges() > I.folded_at_step || has_self_intersections(I.mesh))) {
-        I.rebuild();
-        I.refine_vert();
-    }
-    I.report_balls("after the update's global flips");
-    I.schedule();
-    I.finish_update();
-    I.emergency_requested = false;
-    rep.R_after = I.R_last;
-    if (rep.R_before > 0 && rep.R_after > kCoarseningWarningFactor * rep.R_before)
-        I.violation(Violation::Coarsened, "the update coarsened the mesh: R " + std::to_string(rep.R_before) + " -> " +
-                                              std::to_string(rep.R_after) + " (" +
-                                              std::to_string(rep.R_after / rep.R_before) + "x), vertices " +
-                                              std::to_string(rep.vertices_before) + " -> " +
-                                              std::to_string(I.mesh.n_vertices()));
-    rep.next_step = I.next;
-    rep.samples = I.live;
-    rep.vertices = I.mesh.n_vertices();
-    I.cur.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    rep.counters = I.cur;
-    I.totals += I.cur;
-    ++I.n_updates;
+    DeformUpdateReport rep = I.mesh_update(false);
     rep.violations = I.pending_violations;
     return rep;
 }
@@ -1206,12 +1389,13 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
     if (in_lists != dormant)
         fail("dormant lists hold " + std::to_string(in_lists) + " samples but " + std::to_string(dormant) +
              " samples are dormant");
-    // triangle shape
+    // triangle shape (a graded size allows 3 (1 + 2 L), spec §10.2)
+    const double re_bound = options.radius_edge_bound * (I.size.empty() ? 1.0 : 1.0 + 2.0 * I.params.grading);
     for (Face f : I.mesh.faces()) {
         const auto vs = I.mesh.face_vertices(f);
         const double re = radius_edge_ratio(I.mesh.position(vs[0]), I.mesh.position(vs[1]), I.mesh.position(vs[2]));
         max_radius_edge = std::max(max_radius_edge, re);
-        if (!(re <= options.radius_edge_bound))
+        if (!(re <= re_bound))
             fail("triangle " + I.face_str(f) + " has radius-edge ratio " + std::to_string(re));
     }
     // spacing and empty balls
@@ -1224,8 +1408,10 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
                 if (w == s) return;
                 const double d = distance(I.pos[w], I.pos[s]);
                 min_spacing = std::min(min_spacing, d);
-                if (I.ext[w] > I.ext[s] && d < options.spacing_factor * R)
-                    fail("vertices " + I.idstr(s) + " and " + I.idstr(w) + " are " + std::to_string(d / R) + " R apart");
+                const double r = std::min(I.rs(s, R), I.rs(w, R));
+                if (I.ext[w] > I.ext[s] && d < options.spacing_factor * r)
+                    fail("vertices " + I.idstr(s) + " and " + I.idstr(w) + " are " + std::to_string(d / r) +
+                         (r < R ? " r (their local size) apart" : " R apart"));
             });
         }
         if (options.empty_balls) {

@@ -96,12 +96,18 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             if (dm.is_live(id)) live_pool.push_back(pool_of[id]);
     };
 
-    auto measure = [&](int t, const UpdateCounters& c, bool updated, bool emergency, std::size_t nviol) {
+    auto measure = [&](int t, const UpdateCounters& c, bool updated, bool emergency, std::size_t nviol,
+                       const StepReport* step) {
         DeformLogRow row;
         row.update = updated;
         row.emergency = emergency;
         row.counters = c;
         row.violations = nviol;
+        if (step != nullptr) {
+            row.substeps = step->substeps;
+            row.internal_updates = step->internal_updates;
+            row.max_strain_ratio = step->max_strain_ratio;
+        }
         // Cheap measures at every unit; Hausdorff and h (which warp and search the whole
         // reference) every measure_every units.
         const bool ends = t == 0 || t == T;
@@ -145,10 +151,24 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             fr.metrics = &rep.log.back().metrics;
             fr.counters = c;
             fr.violations = nviol;
+            fr.substeps = row.substeps;
+            fr.internal_updates = row.internal_updates;
             options.on_frame(fr);
         }
     };
-    measure(0, {}, false, false, 0);
+    measure(0, {}, false, false, 0, nullptr);
+    // Totals of the work of one update (the caller's or one between sub-steps).
+    auto count = [&](const UpdateCounters& c) {
+        rep.seconds_updates += c.seconds;
+        rep.flips += c.flips;
+        rep.insertions += c.insertions;
+        rep.removals += c.removals;
+        rep.samples_inserted += c.samples_inserted;
+        rep.samples_deleted += c.samples_deleted;
+        rep.rebuilds += c.rebuilds;
+        rep.rollbacks += c.rollbacks;
+        rep.flip_refusals += c.flip_refusals;
+    };
 
     for (int t = 1; t <= T; ++t) {
         pos.resize(x0.size());
@@ -156,7 +176,12 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
         const StepReport st = dm.advance(t, pos);
         std::size_t nviol = st.violations.size();
         const bool due = st.update_due || options.schedule == Schedule::EveryStep;
-        UpdateCounters c;
+        UpdateCounters c = st.internal;
+        count(st.internal);
+        rep.substeps += st.substeps;
+        rep.max_substeps_per_unit = std::max(rep.max_substeps_per_unit, st.substeps);
+        rep.internal_updates += st.internal_updates;
+        rep.max_strain_ratio = std::max(rep.max_strain_ratio, st.max_strain_ratio);
         bool emergency = false;
         if (due) {
             if (s.edits) {
@@ -179,20 +204,12 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                 }
             }
             const DeformUpdateReport u = dm.update();
-            c = u.counters;
+            c += u.counters;
+            count(u.counters);
             emergency = u.emergency;
             nviol += u.violations.size();
             ++rep.updates;
             if (u.emergency) ++rep.emergency_updates;
-            rep.seconds_updates += u.counters.seconds;
-            rep.flips += c.flips;
-            rep.insertions += c.insertions;
-            rep.removals += c.removals;
-            rep.samples_inserted += c.samples_inserted;
-            rep.samples_deleted += c.samples_deleted;
-            rep.rebuilds += c.rebuilds;
-            rep.rollbacks += c.rollbacks;
-            rep.flip_refusals += c.flip_refusals;
             if (options.check_invariants) {
                 InvariantOptions io;
                 io.self_intersections = false;  // measured at every unit below
@@ -211,7 +228,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
                 }
             }
         }
-        measure(t, c, due, emergency, nviol);
+        measure(t, c, due, emergency, nviol, &st);
     }
     std::size_t warned = 0;
     for (const auto& v : dm.violations()) {
@@ -291,7 +308,7 @@ std::string log_csv(const DeformRunReport& report) {
         if (!header) {
             for (const auto& [name, v] : cols) out << name << ',';
             out << "update,emergency,flips,insertions,removals,samples_inserted,samples_deleted,violations,"
-                   "update_seconds\n";
+                   "update_seconds,substeps,internal_updates,max_strain_ratio\n";
             header = true;
         }
         for (const auto& [name, v] : cols) {
@@ -301,7 +318,7 @@ std::string log_csv(const DeformRunReport& report) {
         const UpdateCounters& c = r.counters;
         out << int(r.update) << ',' << int(r.emergency) << ',' << c.flips << ',' << c.insertions << ','
             << c.removals << ',' << c.samples_inserted << ',' << c.samples_deleted << ',' << r.violations << ','
-            << c.seconds << '\n';
+            << c.seconds << ',' << r.substeps << ',' << r.internal_updates << ',' << r.max_strain_ratio << '\n';
     }
     return out.str();
 }

@@ -13,7 +13,8 @@ namespace dynmesh {
 namespace {
 
 DeformRunReport run(const std::string& name, std::size_t samples, int steps, double speed,
-                    Schedule schedule = Schedule::Paper, int measure_every = 4, double kappa = kPracticalKappa) {
+                    Schedule schedule = Schedule::Paper, int measure_every = 4, double kappa = kPracticalKappa,
+                    std::size_t max_substeps = DeformOptions{}.max_substeps) {
     ScenarioOptions so;
     so.samples = samples;
     so.steps = steps;
@@ -24,6 +25,7 @@ DeformRunReport run(const std::string& name, std::size_t samples, int steps, dou
     ro.check_invariants = true;
     ro.measure_every = measure_every;
     ro.params.kappa = kappa;
+    ro.params.max_substeps = max_substeps;
     return run_deform(s, ro);
 }
 
@@ -176,9 +178,10 @@ TEST(DeformCheck, EveryReasonIsListedWithItsTime) {
 
 TEST(DeformCheck, StrictFailsOnTheMonitorsOfAValidRun) {
     // Too fast for its sampling (steps 100 at 1500 samples): floor(R / (kappa lambda)) = 0 at
-    // every step. The mesh stays valid, so --check passes, but --check=strict lists each
-    // step_too_short with its time unit.
-    const auto r = run("stretch", 1500, 100, 0.5, Schedule::Paper, 0);
+    // every step. Without sub-stepping (which would follow the motion within the budget) the
+    // mesh stays valid, so --check passes, but --check=strict lists each step_too_short with
+    // its time unit.
+    const auto r = run("stretch", 1500, 100, 0.5, Schedule::Paper, 0, kPracticalKappa, 1);
     ASSERT_GT(r.violations.count("step_too_short"), 0u);
     EXPECT_TRUE(check_failures(r, CheckLevel::Invariants).ok())
         << check_failures(r, CheckLevel::Invariants).problems.front();

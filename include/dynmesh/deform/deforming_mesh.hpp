@@ -90,6 +90,29 @@ struct DeformOptions {
     /// Number of probe points for estimating h0 from InitialSurface::surface.
     std::size_t h0_probes = 200000;
     std::uint64_t seed = 1;
+    /// Sub-stepping (spec §10.1; not in the paper): advance() cuts a time unit into
+    /// n = ceil(max D / B) sub-steps, at most this many, with D the relative displacement of
+    /// a mesh edge's ends or of a dormant sample and its owner over the unit, and B the
+    /// budget 2 R / kappa (R = largest circumradius at the last update). Every sample moves
+    /// linearly between its positions at t - 1 and t, and an update runs before any sub-step
+    /// that would take some pair's relative displacement since the last update beyond B.
+    /// When the motion meets the paper's model (relative displacement <= 2 lambda per unit,
+    /// lambda <= R / kappa) this never fires and the run is the paper's. 1 turns it off (the
+    /// paper's algorithm alone; floor(R / (kappa lambda)) = 0 is then Violation::StepTooShort).
+    std::size_t max_substeps = 256;
+    /// Local size field (spec §10.2; not in the paper): a sample's size is
+    /// r(p) = min(R, size_factor * lfs(p)) instead of the global R (R = the largest
+    /// circumradius, as in the paper), with lfs its local feature size: from
+    /// InitialSurface::feature_size when given, else estimated on InitialSurface::reference
+    /// (mesh_feature_size, graded by `grading` along the mesh) or taken from
+    /// InitialSurface::surface. r replaces R in RefineVert's R/3 (promotion and placing), the
+    /// Decimation and spacing-repair radii and the spacing invariant, and sets each pair's
+    /// sub-step budget 2 r / kappa; samples inserted later take r(w) + grading |p - w| from
+    /// their nearest vertex w. Where size_factor lfs >= R everywhere the run is the paper's.
+    /// 0 turns it off. About 9 vertices around a circular section at 0.4.
+    double size_factor = 0.4;
+    /// Lipschitz constant of the size along the surface (>= 0).
+    double grading = 0.3;
 };
 
 /// What the library knows about Sigma(0) besides the samples (all optional). Tri(0) comes
@@ -110,6 +133,9 @@ struct InitialSurface {
     /// samples added where the net is too sparse for it), with its Euler characteristic and
     /// number of components. Nothing is reconstructed.
     const SurfaceMesh* reference = nullptr;
+    /// Local feature size of Sigma(0) at each sample (SampleId order), when the caller knows
+    /// it; otherwise it is estimated (DeformOptions::size_factor).
+    std::vector<double> feature_size;
 };
 
 /// Motion-model monitors and algorithm diagnostics (spec §9 P5). None is silent.
@@ -136,7 +162,9 @@ enum class Violation {
     Coarsened,                  ///< one update raised R by more than 2x (e.g. a hole was cut)
     /// Tri(0) on the reference mesh had to decimate the reference (no restricted Delaunay
     /// triangulation with its topology; the detail says where).
-    InitFallback
+    InitFallback,
+    /// A time unit needed more sub-steps than DeformOptions::max_substeps; the cap was used.
+    SubstepCapHit
 };
 [[nodiscard]] std::string_view to_string(Violation v);
 
@@ -183,6 +211,16 @@ struct StepReport {
     bool emergency = false;   ///< update_due because a monitor tripped
     double max_displacement = 0;  ///< largest sample displacement since the last time unit
     double R = 0;                 ///< current largest circumradius
+    /// Sub-steps the unit was cut into (1: moved at once; DeformOptions::max_substeps).
+    std::size_t substeps = 1;
+    /// Updates run inside the unit, before a sub-step, to keep the budget (their work is in
+    /// `internal`; the caller's update() at t is not among them).
+    std::size_t internal_updates = 0;
+    UpdateCounters internal;
+    /// Largest (relative displacement since the last update) / budget over the pairs at any
+    /// sub-step of the unit: <= 1 unless an update's new edges move faster than the budget
+    /// allows in one sub-step.
+    double max_strain_ratio = 0;
     std::vector<ViolationRecord> violations;
 };
 
@@ -196,8 +234,10 @@ struct InvariantOptions {
     /// circumradius guard refused a flip on sparse samples, spec §9 P9).
     bool empty_balls_soft = false;
     /// Slack factors for checks that hold between steps only up to the L3.6 constants.
-    double radius_edge_bound = 3.0;  ///< every triangle's radius-edge ratio <= this
-    double spacing_factor = 1.0 / 3.0;  ///< every vertex pair >= spacing_factor * R
+    /// Every triangle's radius-edge ratio <= this (times 1 + 2 grading with a size field).
+    double radius_edge_bound = 3.0;
+    /// Every vertex pair >= spacing_factor * R (* min(r_u, r_v) with a size field).
+    double spacing_factor = 1.0 / 3.0;
     double dormant_factor = 1.25;       ///< every dormant point within dormant_factor * R
 };
 

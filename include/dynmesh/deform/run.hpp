@@ -35,6 +35,8 @@ struct DeformFrame {
     const FrameMetrics* metrics = nullptr;  ///< h and Hausdorff are NaN between full measures
     UpdateCounters counters;  ///< work of the update at t (zero when none ran)
     std::size_t violations = 0;  ///< monitors and diagnostics raised at t
+    std::size_t substeps = 1;          ///< StepReport::substeps of the unit ending at t
+    std::size_t internal_updates = 0;  ///< StepReport::internal_updates (work in counters)
 };
 
 struct DeformRunOptions {
@@ -62,8 +64,13 @@ struct DeformLogRow {
     bool measured = false;  ///< h and the Hausdorff distance were measured
     bool update = false;
     bool emergency = false;
+    /// Work of the updates at t: the caller's update and the sub-step updates inside the
+    /// unit ending at t.
     UpdateCounters counters;
     std::size_t violations = 0;
+    std::size_t substeps = 1;          ///< sub-steps of the unit ending at t
+    std::size_t internal_updates = 0;  ///< updates between sub-steps of that unit
+    double max_strain_ratio = 0;       ///< StepReport::max_strain_ratio
 };
 
 struct DeformRunReport {
@@ -73,6 +80,11 @@ struct DeformRunReport {
     std::size_t samples = 0;  ///< |P(0)|
     int time_units = 0;
     std::size_t updates = 0, emergency_updates = 0;
+    /// Sub-stepping (DeformOptions::max_substeps): sub-steps over all time units, the most in
+    /// one unit, the updates run between sub-steps (not in `updates`) and the largest strain
+    /// ratio (StepReport::max_strain_ratio) of any unit.
+    std::size_t substeps = 0, max_substeps_per_unit = 0, internal_updates = 0;
+    double max_strain_ratio = 0;
     std::size_t flips = 0, insertions = 0, removals = 0;
     std::size_t samples_inserted = 0, samples_deleted = 0;
     double seconds_updates = 0;  ///< time in DeformingMesh::update() alone

@@ -1,0 +1,171 @@
+// Sub-stepping (spec deforming-mesh.md §10.1, tests F2 and F3): a time unit is cut into
+// ceil(max D / B) sub-steps, the cut run equals the slow motion it stands for, a rigid motion
+// needs none at any speed, and a jump that folds the mesh in one unit is followed without a
+// fold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/deform/scenario.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/mesh/check.hpp"
+#include "dynmesh/metrics/self_intersection.hpp"
+#include "dynmesh/shapes/analytic.hpp"
+
+namespace dynmesh {
+namespace {
+
+std::vector<Point3> sphere_samples(std::size_t n, std::uint64_t seed) {
+    return Sphere(Point3{0, 0, 0}, 1.0).sample_uniform(n, seed);
+}
+
+/// The largest relative displacement over the budget 2 R / kappa, over the mesh edges and the
+/// dormant samples with their owners, when every sample goes from `from` to `to`: the
+/// sub-step count's definition, computed here from the public accessors.
+double strain_over_budget(const DeformingMesh& dm, const std::vector<Point3>& from, const std::vector<Point3>& to) {
+    const double B = 2 * dm.max_circumradius() / dm.params().kappa;
+    auto rel = [&](SampleId a, SampleId b) { return norm((to[b] - from[b]) - (to[a] - from[a])); };
+    double worst = 0;
+    const SurfaceMesh& m = dm.mesh();
+    for (Edge e : m.edges()) {
+        const Halfedge h = SurfaceMesh::halfedge(e, 0);
+        worst = std::max(worst, rel(dm.sample_of(m.from_vertex(h)), dm.sample_of(m.to_vertex(h))) / B);
+    }
+    for (SampleId s = 0; s < dm.id_capacity(); ++s)
+        if (dm.owner_of(s) != kNoSample) worst = std::max(worst, rel(s, dm.owner_of(s)) / B);
+    return worst;
+}
+
+/// A smooth non-rigid motion of the unit sphere's samples: a twist about z by amplitude a.
+std::vector<Point3> twisted(const std::vector<Point3>& p0, double a) {
+    std::vector<Point3> out(p0.size());
+    for (std::size_t i = 0; i < p0.size(); ++i) {
+        const double th = a * p0[i].z, c = std::cos(th), s = std::sin(th);
+        out[i] = Point3{c * p0[i].x - s * p0[i].y, s * p0[i].x + c * p0[i].y, p0[i].z};
+    }
+    return out;
+}
+
+DeformOptions options(double h0) {
+    DeformOptions o;
+    o.lambda = 1e-9;  // the schedule never calls: only the budget decides
+    o.h0 = h0;
+    o.emergency_steps = false;
+    return o;
+}
+
+TEST(Substep, CountIsTheStrainOverTheBudgetRoundedUp) {
+    const auto P0 = sphere_samples(2000, 3);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    for (const double a : {0.01, 0.05, 0.2, 0.6}) {
+        DeformingMesh dm(P0, options(0.12), {.surface = &sphere});
+        const auto P1 = twisted(P0, a);
+        const double ratio = strain_over_budget(dm, P0, P1);
+        const StepReport st = dm.advance(1, P1);
+        EXPECT_EQ(st.substeps, static_cast<std::size_t>(std::max(1.0, std::ceil(ratio)))) << "a = " << a;
+        EXPECT_LE(st.max_strain_ratio, 1.0 + 1e-9) << "a = " << a;
+        if (ratio > 1) EXPECT_GT(st.internal_updates, 0u) << "a = " << a;
+    }
+}
+
+TEST(Substep, RigidMotionNeedsOneSubStepAtAnySpeed) {
+    const auto P0 = sphere_samples(2000, 5);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh dm(P0, options(0.12), {.surface = &sphere});
+    const std::size_t flips0 = dm.totals().flips;
+    std::vector<Point3> P = P0;
+    for (int t = 1; t <= 5; ++t) {
+        // Translation by 100 h0 and a turn by 0.5 rad per unit.
+        const double c = std::cos(0.5 * t), s = std::sin(0.5 * t);
+        for (std::size_t i = 0; i < P.size(); ++i)
+            P[i] = Point3{c * P0[i].x - s * P0[i].y + 12.0 * t, s * P0[i].x + c * P0[i].y, P0[i].z};
+        const StepReport st = dm.advance(t, P);
+        EXPECT_EQ(st.substeps, 1u) << "t = " << t;
+        EXPECT_EQ(st.internal_updates, 0u);
+        EXPECT_LT(st.max_strain_ratio, 1e-6);
+    }
+    EXPECT_EQ(dm.totals().flips, flips0);
+}
+
+TEST(Substep, EqualsTheSlowMotionItStandsFor) {
+    // Run A: a fast twist, one frame per unit, cut into sub-steps inside the library.
+    // Run B: the same sub-step positions handed in as frames of their own.
+    const auto P0 = sphere_samples(1500, 7);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh a(P0, options(0.14), {.surface = &sphere});
+    DeformingMesh b(P0, options(0.14), {.surface = &sphere});
+    std::vector<Point3> from = P0;
+    int tb = 0;
+    std::size_t cut = 0;
+    for (int t = 1; t <= 4; ++t) {
+        const auto to = twisted(P0, 0.25 * t);
+        const StepReport st = a.advance(t, to);
+        cut += st.substeps > 1;
+        for (std::size_t k = 1; k <= st.substeps; ++k) {
+            std::vector<Point3> at(to.size());
+            const double f = static_cast<double>(k) / static_cast<double>(st.substeps);
+            for (std::size_t i = 0; i < at.size(); ++i) at[i] = k == st.substeps ? to[i] : from[i] + (to[i] - from[i]) * f;
+            const StepReport sb = b.advance(++tb, at);
+            EXPECT_EQ(sb.substeps, 1u) << "t = " << t << ", k = " << k;
+        }
+        from = to;
+    }
+    EXPECT_GT(cut, 0u) << "the motion is too slow to test sub-stepping";
+    EXPECT_GT(a.updates(), 0u);
+    EXPECT_EQ(a.updates(), b.updates());
+    EXPECT_EQ(a.totals().flips, b.totals().flips);
+    EXPECT_EQ(a.totals().insertions, b.totals().insertions);
+    EXPECT_EQ(a.totals().removals, b.totals().removals);
+    ASSERT_EQ(a.mesh().n_faces(), b.mesh().n_faces());
+    auto faces = [](const DeformingMesh& d) {
+        std::vector<std::array<SampleId, 3>> out;
+        for (Face f : d.mesh().faces()) {
+            const auto v = d.mesh().face_vertices(f);
+            std::array<SampleId, 3> s{d.sample_of(v[0]), d.sample_of(v[1]), d.sample_of(v[2])};
+            std::rotate(s.begin(), std::min_element(s.begin(), s.end()), s.end());
+            out.push_back(s);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    EXPECT_EQ(faces(a), faces(b));
+    const auto inv = a.check_invariants();
+    EXPECT_TRUE(inv.ok()) << inv.summary();
+}
+
+TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
+    // One vertex moved along the sphere past a neighbour in one unit: without sub-stepping
+    // its triangles turn inside out (DeformMonitors.InvertedTrianglesAreDetected...).
+    const auto P0 = sphere_samples(3000, 29);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformOptions o;
+    o.lambda = 1e-3;
+    o.h0 = 0.09;
+    DeformingMesh dm(P0, o, {.surface = &sphere});
+    SampleId id = kNoSample;
+    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    const Vertex v = dm.vertex_of(id);
+    const SampleId w = dm.sample_of(dm.mesh().to_vertex(*dm.mesh().outgoing_halfedges(v).begin()));
+    auto pos = P0;
+    // Along the great circle (a chord would leave the sphere at the midpoint).
+    const Point3 target = normalized(2.0 * P0[w] - P0[id]);
+    pos[id] = target;
+    const StepReport st = dm.advance(1, pos);
+    EXPECT_GT(st.substeps, 1u);
+    for (const auto& x : st.violations) {
+        EXPECT_NE(x.kind, Violation::NormalInverted) << x.detail;
+        EXPECT_NE(x.kind, Violation::EdgeAngleBelow90) << x.detail;
+    }
+    if (st.update_due) dm.update();
+    const auto mc = check_mesh(dm.mesh(), MeshCheckOptions{.require_closed = true});
+    EXPECT_TRUE(mc.ok()) << mc.summary();
+    EXPECT_EQ(count_self_intersections(dm.mesh()), 0u);
+    const auto inv = dm.check_invariants();
+    EXPECT_TRUE(inv.ok()) << inv.summary();
+}
+
+}  // namespace
+}  // namespace dynmesh
