@@ -35,6 +35,7 @@ struct DeformArgs {
     double kappa = kPracticalKappa;
     std::size_t max_substeps = DeformOptions{}.max_substeps;
     double size_factor = DeformOptions{}.size_factor;
+    double feature_angle = DeformOptions{}.feature_angle_deg;
     std::uint64_t seed = 1;
     std::string out;
     std::string format = "vtp";
@@ -196,6 +197,7 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     ro.params.kappa = a.kappa;
     ro.params.max_substeps = a.max_substeps;
     ro.params.size_factor = a.size_factor;
+    ro.params.feature_angle_deg = a.feature_angle;
     ro.params.seed = a.seed;
     ro.measure_every = a.measure_every;
     ro.measure.self_intersections = !a.no_self_intersections;
@@ -308,6 +310,12 @@ void register_deform(CLI::App& root, int& result) {
         ->capture_default_str()
         ->check(finite_number())
         ->check(CLI::NonNegativeNumber);
+    sub->add_option("--feature-angle", args->feature_angle,
+                    "Keep sharp edges: never flip an edge, or create one, whose 180 - dihedral exceeds this many degrees, "
+                    "and never decimate a vertex on one (180 = off)")
+        ->capture_default_str()
+        ->check(finite_number())
+        ->check(CLI::Range(0.0, 180.0));
     sub->add_option("--seed", args->seed, "Random seed of the samples")->capture_default_str();
     sub->add_option("--out", args->out,
                     "Output directory: mesh_NNNNN.<format> per time unit, mesh.pvd (vtp), log.csv, summary.json, "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <unordered_set>
 
@@ -270,7 +271,9 @@ struct DeformingMesh::Impl {
             return;
         }
         const Vec3 old_normal = face_normal(f);
-        const AddResult r = add_point(mesh, P(p), f);
+        AddOptions ao;
+        ao.feature_angle_deg = params.feature_angle_deg;
+        const AddResult r = add_point(mesh, P(p), f, ao);
         touch();
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex) {
@@ -314,9 +317,28 @@ struct DeformingMesh::Impl {
 
     /// Remove(vertex of sample s). On success the sample is no longer a vertex (state Dead;
     /// the caller decides what it becomes) and leaves the grid.
-    bool remove_sample(SampleId s, PointGrid* grid) {
+    /// True when an edge at v is sharp (DeformOptions::feature_angle_deg).
+    [[nodiscard]] bool on_sharp_edge(Vertex v) const {
+        if (params.feature_angle_deg >= 180.0) return false;
+        const double min_dihedral = std::numbers::pi - params.feature_angle_deg * std::numbers::pi / 180.0;
+        for (Halfedge h : mesh.outgoing_halfedges(v)) {
+            if (mesh.is_boundary(h) || mesh.is_boundary(mesh.twin(h))) continue;
+            const Point3 &a = mesh.position(v), &b = mesh.position(mesh.to_vertex(h));
+            if (dihedral_angle(a, b, mesh.position(mesh.opposite_vertex(h)),
+                               mesh.position(mesh.opposite_vertex(mesh.twin(h)))) < min_dihedral)
+                return true;
+        }
+        return false;
+    }
+
+    /// Remove(v) of the vertex of s; with keep_sharp, a vertex on a sharp edge stays (for
+    /// the Decimation and the spacing repair, which may leave it).
+    bool remove_sample(SampleId s, PointGrid* grid, bool keep_sharp = false) {
         const Vertex v = vert_of[s];
-        const RemoveResult r = remove_point(mesh, v);
+        if (keep_sharp && on_sharp_edge(v)) return false;
+        RemoveOptions ro;
+        ro.feature_angle_deg = params.feature_angle_deg;
+        const RemoveResult r = remove_point(mesh, v, ro);
         touch();
         cur.flips += r.flips;
         if (!r.removed) {
@@ -342,6 +364,7 @@ struct DeformingMesh::Impl {
     void global_flip() {
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
+        fo.feature_angle_deg = params.feature_angle_deg;
         const auto edges = all_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
         if (r.flips > 0) touch();
@@ -617,7 +640,7 @@ struct DeformingMesh::Impl {
             if (mesh.n_vertices() <= 4) break;
             std::vector<SampleId> moving = dl[u];
             dl[u].clear();
-            if (!remove_sample(u, nullptr)) {
+            if (!remove_sample(u, nullptr, /*keep_sharp=*/true)) {
                 dl[u] = std::move(moving);
                 for (std::uint32_t i = 0; i < dl[u].size(); ++i) dpos[dl[u][i]] = i;
                 continue;

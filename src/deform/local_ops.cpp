@@ -122,11 +122,13 @@ struct LocalFlipOutcome {
 /// `rings` hops of `centre`, until none is left, a round makes no flip, or max_rounds is
 /// reached.
 LocalFlipOutcome local_flip(SurfaceMesh& m, std::span<const Vertex> centre,
-                            std::span<const Edge> seeds, FlipRule rule, std::size_t rings,
-                            std::size_t max_rounds, bool centre_in_nearby_balls, bool do_flip) {
+                            std::span<const Edge> seeds, FlipRule rule, double feature_angle_deg,
+                            std::size_t rings, std::size_t max_rounds, bool centre_in_nearby_balls,
+                            bool do_flip) {
     LocalFlipOutcome out;
     FlipOptions fo;
     fo.rule = rule;
+    fo.feature_angle_deg = feature_angle_deg;
     auto run = [&](std::span<const Edge> s) {
         const FlipReport rep = flip_from(m, s, fo);
         out.flips += rep.flips;
@@ -203,7 +205,7 @@ AddResult add_point(SurfaceMesh& m, const Point3& p, Face f, const AddOptions& o
     for (Edge e : candidates) {
         const Point3 &x = m.position(m.vertex(e, 0)), &y = m.position(m.vertex(e, 1));
         if (!(dot(x - pt, y - pt) < 0)) continue;
-        const FlipVerdict verdict = flip_verdict(m, e, o.rule);
+        const FlipVerdict verdict = flip_verdict(m, e, o.rule, o.feature_angle_deg);
         if (verdict == FlipVerdict::NotImproving) ++r.not_improving;
         if (verdict != FlipVerdict::Flippable) continue;
         m.flip(e);
@@ -221,7 +223,7 @@ AddResult add_point(SurfaceMesh& m, const Point3& p, Face f, const AddOptions& o
         if (!m.is_boundary(h)) seeds.push_back(SurfaceMesh::edge(m.next(h)));
     }
     const Vertex centre[1] = {r.vertex};
-    const LocalFlipOutcome lf = local_flip(m, centre, seeds, o.rule, o.check_rings,
+    const LocalFlipOutcome lf = local_flip(m, centre, seeds, o.rule, o.feature_angle_deg, o.check_rings,
                                            o.max_repair_rounds, /*centre_in_nearby_balls=*/true,
                                            /*do_flip=*/true);
     r.flips += lf.flips;
@@ -480,7 +482,7 @@ RemoveResult remove_point(SurfaceMesh& m, Vertex v, const RemoveOptions& o) {
             if (in_link.count(m.to_vertex(h).idx()) != 0 && x.idx() < m.to_vertex(h).idx())
                 seeds.push_back(SurfaceMesh::edge(h));
     const LocalFlipOutcome lf =
-        local_flip(m, link, seeds, o.rule, o.check_rings, o.max_repair_rounds,
+        local_flip(m, link, seeds, o.rule, o.feature_angle_deg, o.check_rings, o.max_repair_rounds,
                    /*centre_in_nearby_balls=*/false, o.flip_after);
     r.flips = lf.flips;
     r.not_improving = lf.not_improving;

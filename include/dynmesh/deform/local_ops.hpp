@@ -47,6 +47,8 @@ struct AddOptions {
     /// within check_rings hops of p.
     std::size_t check_rings = 2;
     std::size_t max_repair_rounds = 4;  ///< re-seeded flip rounds before giving up
+    /// Sharp-feature guard of every flip (FlipOptions::feature_angle_deg; 180 = off).
+    double feature_angle_deg = 180.0;
 };
 
 struct AddResult {
@@ -94,6 +96,7 @@ struct RemoveOptions {
     bool flip_after = true;             ///< run the local flip after re-triangulating
     std::size_t check_rings = 2;        ///< as AddOptions::check_rings, around the link
     std::size_t max_repair_rounds = 4;  ///< as AddOptions::max_repair_rounds
+    double feature_angle_deg = 180.0;   ///< as AddOptions::feature_angle_deg
 };
 
 struct RemoveResult {
