@@ -259,193 +259,6 @@ private:
     double r2_ = 0;
 };
 
-// ---- a uniform hash grid -------------------------------------------------------------------
-
-/// Points in cubic cells of side `cell`, found through an open-addressing table keyed by
-/// the integer cell coordinates; the points of a cell form a linked list. Insert-only.
-class HashGrid {
-public:
-    HashGrid(double cell, std::size_t expected) : cell_(cell), inv_(1.0 / cell) {
-        std::size_t n = 16;
-        while (n < 2 * expected + 16) n *= 2;
-        table_.assign(n, Slot{});
-        mask_ = n - 1;
-        pts_.reserve(expected);
-        ids_.reserve(expected);
-        next_.reserve(expected);
-    }
-
-    void insert(std::uint32_t id, const Point3& p) {
-        const auto c = coords(p);
-        if (2 * (cells_ + 1) > table_.size()) grow();
-        Slot& s = find_or_add(c[0], c[1], c[2]);
-        const auto e = static_cast<std::uint32_t>(pts_.size());
-        pts_.push_back(p);
-        ids_.push_back(id);
-        next_.push_back(s.head);
-        s.head = e;
-        for (int i = 0; i < 3; ++i) {
-            lo_[i] = std::min(lo_[i], c[i]);
-            hi_[i] = std::max(hi_[i], c[i]);
-        }
-    }
-    [[nodiscard]] std::size_t size() const { return pts_.size(); }
-
-    /// Calls f(id, squared distance) for every point within distance r of p (closed ball).
-    template <class F>
-    void for_each_within(const Point3& p, double r, F&& f) const {
-        if (pts_.empty()) return;
-        const double r2 = r * r;
-        const auto a = coords(p - Vec3{r, r, r}), b = coords(p + Vec3{r, r, r});
-        std::array<std::int64_t, 3> l{}, h{};
-        for (int i = 0; i < 3; ++i) {
-            l[i] = std::max(a[i], lo_[i]);
-            h[i] = std::min(b[i], hi_[i]);
-            if (l[i] > h[i]) return;
-        }
-        for (std::int64_t x = l[0]; x <= h[0]; ++x)
-            for (std::int64_t y = l[1]; y <= h[1]; ++y)
-                for (std::int64_t z = l[2]; z <= h[2]; ++z) {
-                    const Slot* s = find(x, y, z);
-                    if (s == nullptr) continue;
-                    for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
-                        const double d2 = sqdistance(pts_[e], p);
-                        if (d2 <= r2) f(ids_[e], d2);
-                    }
-                }
-    }
-
-    /// True when some point lies within distance r of q (closed ball).
-    [[nodiscard]] bool any_within(const Point3& q, double r) const {
-        if (pts_.empty()) return false;
-        const double r2 = r * r;
-        const auto a = coords(q - Vec3{r, r, r}), b = coords(q + Vec3{r, r, r});
-        for (std::int64_t x = std::max(a[0], lo_[0]); x <= std::min(b[0], hi_[0]); ++x)
-            for (std::int64_t y = std::max(a[1], lo_[1]); y <= std::min(b[1], hi_[1]); ++y)
-                for (std::int64_t z = std::max(a[2], lo_[2]); z <= std::min(b[2], hi_[2]); ++z) {
-                    const Slot* s = find(x, y, z);
-                    if (s == nullptr) continue;
-                    for (std::uint32_t e = s->head; e != kNone; e = next_[e])
-                        if (sqdistance(pts_[e], q) <= r2) return true;
-                }
-        return false;
-    }
-
-    /// Squared distance from q to the nearest point whose id differs from `exclude`, exact
-    /// when it is > stop_sq; otherwise some value <= stop_sq (the search stops early).
-    /// Infinity when there is no such point.
-    [[nodiscard]] double nearest_sq(const Point3& q, double stop_sq = -1.0,
-                                    std::uint32_t exclude = kNone) const {
-        return nearest(q, stop_sq, exclude).first;
-    }
-    /// As nearest_sq, with the id of the point found (kNone for none).
-    [[nodiscard]] std::pair<double, std::uint32_t> nearest(const Point3& q, double stop_sq = -1.0,
-                                                           std::uint32_t exclude = kNone) const {
-        double best = std::numeric_limits<double>::infinity();
-        std::uint32_t best_id = kNone;
-        if (pts_.empty()) return {best, best_id};
-        const auto c = coords(q);
-        for (std::int64_t k = 0;; ++k) {
-            // Visit the cells at Chebyshev distance exactly k from c (clipped to the occupied
-            // box).
-            bool any_inside = false;
-            for (std::int64_t dx = -k; dx <= k; ++dx) {
-                const std::int64_t x = c[0] + dx;
-                if (x < lo_[0] || x > hi_[0]) continue;
-                for (std::int64_t dy = -k; dy <= k; ++dy) {
-                    const std::int64_t y = c[1] + dy;
-                    if (y < lo_[1] || y > hi_[1]) continue;
-                    const bool face = (dx == -k || dx == k || dy == -k || dy == k);
-                    const std::int64_t step = face ? 1 : std::max<std::int64_t>(2 * k, 1);
-                    for (std::int64_t dz = -k; dz <= k; dz += step) {
-                        const std::int64_t z = c[2] + dz;
-                        if (z < lo_[2] || z > hi_[2]) continue;
-                        any_inside = true;
-                        const Slot* s = find(x, y, z);
-                        if (s == nullptr) continue;
-                        for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
-                            if (ids_[e] == exclude) continue;
-                            const double d2 = sqdistance(pts_[e], q);
-                            if (d2 < best || (d2 == best && ids_[e] < best_id)) {
-                                best = d2;
-                                best_id = ids_[e];
-                            }
-                        }
-                    }
-                }
-            }
-            // Every point not yet seen is at distance >= k * cell.
-            const double seen = static_cast<double>(k) * cell_;
-            if (best <= seen * seen || best <= stop_sq) return {best, best_id};
-            if (!any_inside && covers_box(c, k)) return {best, best_id};
-        }
-    }
-
-private:
-    struct Slot {
-        std::int64_t x = 0, y = 0, z = 0;
-        std::uint32_t head = kNone;
-        bool used = false;
-    };
-
-    [[nodiscard]] std::array<std::int64_t, 3> coords(const Point3& p) const {
-        auto f = [&](double v) {
-            const double c = std::floor(v * inv_);
-            return static_cast<std::int64_t>(std::clamp(c, -4e15, 4e15));
-        };
-        return {f(p.x), f(p.y), f(p.z)};
-    }
-    [[nodiscard]] std::size_t hash(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        return static_cast<std::size_t>(hash_cell(x, y, z)) & mask_;
-    }
-    [[nodiscard]] const Slot* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
-            const Slot& s = table_[i];
-            if (!s.used) return nullptr;
-            if (s.x == x && s.y == y && s.z == z) return &s;
-        }
-    }
-    Slot& find_or_add(std::int64_t x, std::int64_t y, std::int64_t z) {
-        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
-            Slot& s = table_[i];
-            if (!s.used) {
-                s = Slot{x, y, z, kNone, true};
-                ++cells_;
-                return s;
-            }
-            if (s.x == x && s.y == y && s.z == z) return s;
-        }
-    }
-    void grow() {
-        std::vector<Slot> old = std::move(table_);
-        table_.assign(old.size() * 2, Slot{});
-        mask_ = table_.size() - 1;
-        for (const Slot& s : old) {
-            if (!s.used) continue;
-            for (std::size_t i = hash(s.x, s.y, s.z);; i = (i + 1) & mask_)
-                if (!table_[i].used) {
-                    table_[i] = s;
-                    break;
-                }
-        }
-    }
-    /// True when the cube of cells at Chebyshev distance <= k from c contains the box of
-    /// occupied cells.
-    [[nodiscard]] bool covers_box(const std::array<std::int64_t, 3>& c, std::int64_t k) const {
-        for (int i = 0; i < 3; ++i)
-            if (c[i] - k > lo_[i] || c[i] + k < hi_[i]) return false;
-        return true;
-    }
-
-    double cell_, inv_;
-    std::vector<Slot> table_;
-    std::size_t mask_ = 0, cells_ = 0;
-    std::vector<Point3> pts_;
-    std::vector<std::uint32_t> ids_, next_;
-    std::array<std::int64_t, 3> lo_{INT64_MAX, INT64_MAX, INT64_MAX};
-    std::array<std::int64_t, 3> hi_{INT64_MIN, INT64_MIN, INT64_MIN};
-};
-
 /// A cell size for n points spread over a surface with this bounding box: about the mean
 /// spacing of a sphere-like surface.
 double surface_cell(const Bbox3& box, std::size_t n) {
@@ -460,11 +273,7 @@ Bbox3 bbox_of(std::span<const Point3> pts) {
     return b;
 }
 
-HashGrid grid_of(std::span<const Point3> pts, double cell) {
-    HashGrid g(cell, pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i) g.insert(static_cast<std::uint32_t>(i), pts[i]);
-    return g;
-}
+constexpr auto kAny = [](std::uint32_t) { return true; };
 
 // ---- scenario construction -----------------------------------------------------------------
 
@@ -612,10 +421,12 @@ void finish(Scenario& s) {
     s.h0 = covering_radius(reference_probes(s.reference), p0);
 
     // Typical spacing: median nearest-neighbour distance within P(0).
-    const HashGrid g0 = grid_of(p0, surface_cell(bbox_of(p0), p0.size()));
+    const PointGrid g0 = PointGrid::bulk(surface_cell(bbox_of(p0), p0.size()), p0);
     std::vector<double> nn(p0.size());
-    for (std::size_t i = 0; i < p0.size(); ++i)
-        nn[i] = std::sqrt(g0.nearest_sq(p0[i], -1.0, static_cast<std::uint32_t>(i)));
+    for (std::size_t i = 0; i < p0.size(); ++i) {
+        const auto other = [i](std::uint32_t id) { return id != i; };
+        nn[i] = g0.nearest(p0[i], PointGrid::positions(p0), other).second;
+    }
     const auto mid = nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2);
     std::nth_element(nn.begin(), mid, nn.end());
     s.spacing0 = *mid;
@@ -624,11 +435,12 @@ void finish(Scenario& s) {
                            "': more than half of the initial samples coincide with another one");
 
     s.density_radius = 4.0 * s.spacing0;
-    const HashGrid gd = grid_of(p0, s.density_radius);
+    const PointGrid gd = PointGrid::bulk(s.density_radius, p0);
     s.initial_density.assign(pool.size(), 0);
     for (std::size_t i = 0; i < pool.size(); ++i) {
         std::uint32_t n = 0;
-        gd.for_each_within(pool[i], s.density_radius, [&](std::uint32_t, double) { ++n; });
+        gd.for_each_within(pool[i], s.density_radius, PointGrid::positions(p0),
+                           [&](std::uint32_t, double) { ++n; });
         s.initial_density[i] = n;
     }
 
@@ -988,14 +800,14 @@ double covering_radius(std::span<const Point3> probes, std::span<const Point3> s
     if (samples.empty())
         throw InvalidInput("covering_radius: " + std::to_string(probes.size()) +
                            " probes but no sample");
-    const HashGrid g = grid_of(samples, surface_cell(bbox_of(samples), samples.size()));
+    const PointGrid g = PointGrid::bulk(surface_cell(bbox_of(samples), samples.size()), samples);
     double worst = 0;  // squared
     // A probe cannot raise the maximum once some sample is within it: try the sample found
     // for the previous probe first (a hit most of the time for spatially ordered probes).
     std::uint32_t last = kNone;
     for (const Point3& q : probes) {
         if (last != kNone && sqdistance(q, samples[last]) <= worst) continue;
-        const auto [d2, id] = g.nearest(q, worst);
+        const auto [id, d2] = g.nearest_sq(q, PointGrid::positions(samples), kAny, worst);
         worst = std::max(worst, d2);
         last = id;
     }
@@ -1053,17 +865,20 @@ SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::
     std::vector<char> state(m, kAbsent);
     for (std::uint32_t i : live) state[i] = kLive;
 
+    const auto pos = PointGrid::positions(pt);
     SampleEdits out;
-    // 1. Insertions: greedy in index order.
+    // 1. Insertions: greedy in index order (the live samples in one grid made at once, the
+    // few insertions in another that grows).
     {
-        HashGrid g(o.insert_radius, live.size() + 64);
-        for (std::uint32_t i : live) g.insert(i, pt[i]);
+        const PointGrid g = PointGrid::bulk(o.insert_radius, pt, live);
+        PointGrid inserted(o.insert_radius);
         for (std::uint32_t i = 0; i < m; ++i) {
             if (state[i] != kAbsent) continue;
-            if (!g.any_within(pt[i], o.insert_radius)) {
+            if (!g.any_within(pt[i], o.insert_radius, pos) &&
+                !inserted.any_within(pt[i], o.insert_radius, pos)) {
                 out.insert_pool.push_back(i);
                 state[i] = kInserted;
-                g.insert(i, pt[i]);
+                inserted.insert(i, pt[i]);
             }
         }
     }
@@ -1071,9 +886,9 @@ SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::
 
     // 2. Density ratios over live samples and planned insertions.
     const double rd = s.density_radius;
-    HashGrid gd(rd, live.size() + out.insert_pool.size());
-    for (std::uint32_t i : live) gd.insert(i, pt[i]);
-    for (std::uint32_t i : out.insert_pool) gd.insert(i, pt[i]);
+    std::vector<std::uint32_t> present = live;
+    present.insert(present.end(), out.insert_pool.begin(), out.insert_pool.end());
+    const PointGrid gd = PointGrid::bulk(rd, pt, present);
     std::vector<std::uint32_t> count(m, 0);
     std::vector<std::uint32_t> candidates;
     auto ratio = [&](std::uint32_t p) {
@@ -1082,14 +897,14 @@ SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::
     };
     for (std::uint32_t p : live) {
         std::uint32_t n = 0;
-        gd.for_each_within(pt[p], rd, [&](std::uint32_t, double) { ++n; });
+        gd.for_each_within(pt[p], rd, pos, [&](std::uint32_t, double) { ++n; });
         count[p] = n;
         if (ratio(p) >= o.compress_ratio) candidates.push_back(p);
     }
     if (candidates.empty()) return out;
     for (std::uint32_t i : out.insert_pool) {  // running counts are kept for insertions too
         std::uint32_t n = 0;
-        gd.for_each_within(pt[i], rd, [&](std::uint32_t, double) { ++n; });
+        gd.for_each_within(pt[i], rd, pos, [&](std::uint32_t, double) { ++n; });
         count[i] = n;
     }
 
@@ -1102,7 +917,7 @@ SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::
         if (keep[p] || !(ratio(p) > o.target_ratio)) continue;
         std::uint32_t q = kNone;
         double qd = std::numeric_limits<double>::infinity();
-        gd.for_each_within(pt[p], keep_r, [&](std::uint32_t id, double d2) {
+        gd.for_each_within(pt[p], keep_r, pos, [&](std::uint32_t id, double d2) {
             if (id == p || gone[id]) return;
             if (d2 < qd || (d2 == qd && id < q)) {
                 qd = d2;
@@ -1113,7 +928,7 @@ SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::
         gone[p] = 1;
         keep[q] = 1;
         out.delete_pool.push_back(p);
-        gd.for_each_within(pt[p], rd, [&](std::uint32_t id, double) {
+        gd.for_each_within(pt[p], rd, pos, [&](std::uint32_t id, double) {
             if (count[id] > 0) --count[id];
         });
     }
