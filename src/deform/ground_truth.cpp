@@ -45,88 +45,6 @@ void build_stars(std::size_t n_vertices, std::span<const Tri> tris,
         for (std::uint32_t v : tris[f]) star[fill[v]++] = static_cast<std::uint32_t>(f);
 }
 
-/// A static spatial hash: points bucketed by a hash of their grid cell (CSR arrays, built
-/// in two linear passes). Buckets may mix cells; callers check distances anyway.
-class CellHash {
-public:
-    CellHash() = default;
-    CellHash(std::span<const Point3> pts, std::span<const std::uint32_t> ids, double cell)
-        : pts_(pts), inv_(1.0 / cell), cell_(cell) {
-        std::size_t n = 16;
-        while (n < 2 * ids.size()) n *= 2;
-        mask_ = n - 1;
-        begin_.assign(n + 1, 0);
-        for (std::uint32_t id : ids) ++begin_[bucket(pts[id]) + 1];
-        for (std::size_t i = 0; i < n; ++i) begin_[i + 1] += begin_[i];
-        entries_.resize(ids.size());
-        std::vector<std::uint32_t> fill(begin_.begin(), begin_.end() - 1);
-        for (std::uint32_t id : ids) entries_[fill[bucket(pts[id])]++] = id;
-    }
-    [[nodiscard]] bool empty() const { return entries_.empty(); }
-
-    /// Calls f(id) for every point within distance r of q (and maybe a few more).
-    template <class F>
-    void for_each_near(const Point3& q, double r, F&& f) const {
-        const std::int64_t x0 = coord(q.x - r), x1 = coord(q.x + r);
-        const std::int64_t y0 = coord(q.y - r), y1 = coord(q.y + r);
-        const std::int64_t z0 = coord(q.z - r), z1 = coord(q.z + r);
-        const double cells = static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) *
-                             static_cast<double>(z1 - z0 + 1);
-        if (cells > static_cast<double>(entries_.size())) {  // cheaper to scan everything
-            for (std::uint32_t id : entries_) f(id);
-            return;
-        }
-        const double r2 = r * r;
-        for (std::int64_t x = x0; x <= x1; ++x)
-            for (std::int64_t y = y0; y <= y1; ++y)
-                for (std::int64_t z = z0; z <= z1; ++z) {
-                    const std::size_t b = hash(x, y, z);
-                    for (std::uint32_t k = begin_[b]; k < begin_[b + 1]; ++k) {
-                        const std::uint32_t id = entries_[k];
-                        if (cell_of(pts_[id]) == std::array<std::int64_t, 3>{x, y, z} &&
-                            sqdistance(pts_[id], q) <= r2)
-                            f(id);
-                    }
-                }
-    }
-    /// The nearest point to q (kNone when empty).
-    [[nodiscard]] std::uint32_t nearest(const Point3& q) const {
-        std::uint32_t best = kNone;
-        double bd = std::numeric_limits<double>::infinity();
-        if (entries_.empty()) return best;
-        for (double r = cell_;; r *= 2) {
-            for_each_near(q, r, [&](std::uint32_t id) {
-                const double d = sqdistance(pts_[id], q);
-                if (d < bd || (d == bd && id < best)) {
-                    bd = d;
-                    best = id;
-                }
-            });
-            if (best != kNone) return best;
-        }
-    }
-
-private:
-    [[nodiscard]] std::int64_t coord(double v) const {
-        return static_cast<std::int64_t>(std::clamp(std::floor(v * inv_), -4e15, 4e15));
-    }
-    [[nodiscard]] std::array<std::int64_t, 3> cell_of(const Point3& p) const {
-        return {coord(p.x), coord(p.y), coord(p.z)};
-    }
-    [[nodiscard]] std::size_t hash(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        return static_cast<std::size_t>(hash_cell(x, y, z)) & mask_;
-    }
-    [[nodiscard]] std::size_t bucket(const Point3& p) const {
-        const auto c = cell_of(p);
-        return hash(c[0], c[1], c[2]);
-    }
-
-    std::span<const Point3> pts_;
-    double inv_ = 1, cell_ = 1;
-    std::size_t mask_ = 0;
-    std::vector<std::uint32_t> begin_, entries_;
-};
-
 /// Exact sampled one-sided distances from query points to a triangle mesh (see the file
 /// comment of ground_truth.hpp).
 class LocalDistance {
@@ -230,28 +148,27 @@ private:
         return v;
     }
     /// The grid over the vertices with a triangle, built on first use.
-    const CellHash& grid() const {
+    const PointGrid& grid() const {
         if (!grid_built_) {
             std::vector<std::uint32_t> ids;
             ids.reserve(pts_.size());
             for (std::size_t v = 0; v + 1 < begin_.size(); ++v)
                 if (begin_[v + 1] > begin_[v]) ids.push_back(static_cast<std::uint32_t>(v));
-            grid_ = CellHash(pts_, ids, cell_);
+            grid_ = PointGrid::bulk(cell_, pts_, ids);
             grid_built_ = true;
         }
         return grid_;
     }
     [[nodiscard]] std::uint32_t nearest_vertex(const Point3& q) const {
-        return grid().nearest(q);
+        const auto any = [](std::uint32_t) { return true; };
+        return grid().nearest_sq(q, PointGrid::positions(pts_), any).first;
     }
     /// The exact squared distance from q to the mesh, given an upper bound u2 of it: every
     /// triangle closer than sqrt(u2) has all its vertices within sqrt(u2) + longest edge.
     [[nodiscard]] double exact_sq(const Point3& q, double u2) const {
-        const double r = std::sqrt(u2) + lmax_;
-        const double r2 = r * r;
         double best = u2;
-        grid().for_each_near(q, r, [&](std::uint32_t v) {
-            if (sqdistance(q, pts_[v]) > r2) return;
+        const double r = std::sqrt(u2) + lmax_;
+        grid().for_each_within(q, r, PointGrid::positions(pts_), [&](std::uint32_t v, double) {
             best = std::min(best, star_sq(q, v, -1.0));
         });
         return best;
@@ -261,7 +178,7 @@ private:
     std::span<const Tri> tris_;
     std::span<const std::uint32_t> begin_, star_;
     double lmax_ = 0, cell_ = 1;
-    mutable CellHash grid_;
+    mutable PointGrid grid_;
     mutable bool grid_built_ = false;
 };
 

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <limits>
 #include <numeric>
-#include <sstream>
 #include <unordered_map>
 #include <utility>
 
@@ -18,433 +17,14 @@
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "scenario_common.hpp"
 
 namespace dynmesh {
 
-// ---- profiles ------------------------------------------------------------------------------
-
-double cycle_profile(double u) { return 0.5 * (1.0 - std::cos(2.0 * kPi * u)); }
-double swing_profile(double u) { return std::sin(2.0 * kPi * u); }
+using detail::fmt;
+using detail::kNone;
 
 namespace {
-
-constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-
-/// Quintic smoothstep on [0, 1], clamped outside (C2 at both ends).
-double smoothstep5(double x) {
-    if (x <= 0) return 0;
-    if (x >= 1) return 1;
-    return x * x * x * (x * (6.0 * x - 15.0) + 10.0);
-}
-
-std::string fmt(double x) {
-    std::ostringstream os;
-    os.precision(4);
-    os << x;
-    return os.str();
-}
-
-void check_positive(const char* who, const char* what, double x) {
-    if (!(std::isfinite(x) && x > 0))
-        throw InvalidInput(std::string(who) + ": " + what + " must be positive and finite (got " +
-                           fmt(x) + ")");
-}
-
-Vec3 unit_axis(const char* who, const Vec3& axis) {
-    const double n = norm(axis);
-    if (!(std::isfinite(n) && n > 0))
-        throw InvalidInput(std::string(who) + ": the axis must be a non-zero finite vector");
-    return axis / n;
-}
-
-/// Common part of the warps: the path parameter u = rate * t.
-class CyclicWarp : public Warp {
-public:
-    CyclicWarp(const char* who, const Point3& center, double rate) : center_(center), rate_(rate) {
-        check_positive(who, "the rate", rate);
-        if (!is_finite(center)) throw InvalidInput(std::string(who) + ": the centre is not finite");
-    }
-
-protected:
-    [[nodiscard]] double u(double t) const { return rate_ * t; }
-    Point3 center_;
-    double rate_;
-};
-
-class PulseWarp final : public CyclicWarp {
-public:
-    PulseWarp(const Point3& c, double max_scale, double rate)
-        : CyclicWarp("make_pulse_warp", c, rate), amp_(max_scale - 1.0) {
-        check_positive("make_pulse_warp", "max_scale", max_scale);
-    }
-    [[nodiscard]] std::string name() const override { return "pulse"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double f = 1.0 + amp_ * cycle_profile(u(t));
-        if (f == 1.0) return x;
-        return center_ + (x - center_) * f;
-    }
-
-private:
-    double amp_;
-};
-
-class StretchWarp final : public CyclicWarp {
-public:
-    StretchWarp(const Point3& c, const Vec3& axis, double max_stretch, double rate)
-        : CyclicWarp("make_stretch_warp", c, rate),
-          axis_(unit_axis("make_stretch_warp", axis)),
-          amp_(max_stretch - 1.0) {
-        check_positive("make_stretch_warp", "max_stretch", max_stretch);
-    }
-    [[nodiscard]] std::string name() const override { return "stretch"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double g = amp_ * cycle_profile(u(t));  // f - 1
-        if (g == 0.0) return x;
-        return x + axis_ * (dot(x - center_, axis_) * g);
-    }
-
-private:
-    Vec3 axis_;
-    double amp_;
-};
-
-/// Rotation of d about the unit axis k by the angle with cosine c and sine s (Rodrigues).
-Vec3 rotate(const Vec3& d, const Vec3& k, double c, double s) {
-    const Vec3 par = k * dot(k, d);
-    const Vec3 perp = d - par;
-    return par + perp * c + cross(k, perp) * s;
-}
-
-class TwistWarp final : public CyclicWarp {
-public:
-    TwistWarp(const Point3& c, const Vec3& axis, double half_length, double end_angle, double rate)
-        : CyclicWarp("make_twist_warp", c, rate),
-          axis_(unit_axis("make_twist_warp", axis)),
-          k_(end_angle / half_length) {
-        check_positive("make_twist_warp", "half_length", half_length);
-        check_positive("make_twist_warp", "end_angle", end_angle);
-    }
-    [[nodiscard]] std::string name() const override { return "twist"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double w = swing_profile(u(t));
-        if (w == 0.0) return x;
-        const Vec3 d = x - center_;
-        const double theta = w * k_ * dot(d, axis_);
-        return center_ + rotate(d, axis_, std::cos(theta), std::sin(theta));
-    }
-
-private:
-    Vec3 axis_;
-    double k_;  // end angle per unit length along the axis
-};
-
-class BendWarp final : public CyclicWarp {
-public:
-    BendWarp(const Point3& c, const Vec3& axis, const Vec3& toward, double half_length,
-             double max_turn, double pre_stretch, double rate)
-        : CyclicWarp("make_bend_warp", c, rate), pre_stretch_(pre_stretch) {
-        check_positive("make_bend_warp", "half_length", half_length);
-        check_positive("make_bend_warp", "max_turn", max_turn);
-        if (!(std::isfinite(pre_stretch) && pre_stretch >= 1.0))
-            throw InvalidInput("make_bend_warp: pre_stretch must be >= 1 and finite (got " +
-                               fmt(pre_stretch) + ")");
-        if (!(max_turn < 2.0 * kPi))
-            throw InvalidInput("make_bend_warp: max_turn must be < 2 pi (got " + fmt(max_turn) +
-                               ")");
-        e1_ = unit_axis("make_bend_warp", axis);
-        const Vec3 b = toward - e1_ * dot(toward, e1_);
-        if (!(norm(b) > 1e-9 * std::max(1.0, norm(toward))))
-            throw InvalidInput("make_bend_warp: 'toward' must not be parallel to the axis");
-        e2_ = normalized(b);
-        e3_ = cross(e1_, e2_);
-        kmax_ = max_turn / (2.0 * half_length * pre_stretch);
-    }
-    [[nodiscard]] std::string name() const override { return "bend"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double q = cycle_profile(u(t));
-        double sigma = 1.0, k = 0.0;
-        if (pre_stretch_ > 1.0) {
-            sigma = 1.0 + (pre_stretch_ - 1.0) * smoothstep5(2.0 * q);
-            k = kmax_ * smoothstep5(2.0 * q - 1.0);
-        } else {
-            k = kmax_ * q;
-        }
-        if (sigma == 1.0 && k == 0.0) return x;
-        const Vec3 d = x - center_;
-        const double a = dot(d, e1_) * sigma, b = dot(d, e2_), cc = dot(d, e3_);
-        double a2 = a, b2 = b;
-        if (k != 0.0) {
-            const double phi = k * a;
-            const double sp = std::sin(phi), cp = std::cos(phi), sh = std::sin(0.5 * phi);
-            a2 = sp / k - b * sp;
-            b2 = b * cp + 2.0 * sh * sh / k;
-        }
-        return center_ + e1_ * a2 + e2_ * b2 + e3_ * cc;
-    }
-
-private:
-    double pre_stretch_;
-    Vec3 e1_, e2_, e3_;
-    double kmax_ = 0;
-};
-
-class RotationWarp final : public CyclicWarp {
-public:
-    RotationWarp(const Point3& c, const Vec3& axis, double rate)
-        : CyclicWarp("make_rotation_warp", c, rate), axis_(unit_axis("make_rotation_warp", axis)) {}
-    [[nodiscard]] std::string name() const override { return "rotate"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double theta = 2.0 * kPi * u(t);
-        if (theta == 0.0) return x;
-        return center_ + rotate(x - center_, axis_, std::cos(theta), std::sin(theta));
-    }
-
-private:
-    Vec3 axis_;
-};
-
-class DimpleWarp final : public CyclicWarp {
-public:
-    DimpleWarp(std::vector<Point3> centers, std::vector<Vec3> displacements, double radius,
-               double rate)
-        : CyclicWarp("make_dimple_warp", Point3{0, 0, 0}, rate),
-          c_(std::move(centers)),
-          d_(std::move(displacements)) {
-        const char* who = "make_dimple_warp";
-        check_positive(who, "radius", radius);
-        if (c_.empty()) throw InvalidInput("make_dimple_warp: no centre");
-        if (c_.size() != d_.size())
-            throw InvalidInput("make_dimple_warp: " + std::to_string(c_.size()) +
-                               " centres but " + std::to_string(d_.size()) + " displacements");
-        double dmax = 0;
-        for (std::size_t k = 0; k < c_.size(); ++k) {
-            if (!is_finite(c_[k]) || !is_finite(d_[k]))
-                throw InvalidInput("make_dimple_warp: centre or displacement " +
-                                   std::to_string(k) + " is not finite");
-            dmax = std::max(dmax, norm(d_[k]));
-        }
-        for (std::size_t i = 0; i < c_.size(); ++i)
-            for (std::size_t j = i + 1; j < c_.size(); ++j)
-                if (distance(c_[i], c_[j]) < 2.0 * radius)
-                    throw InvalidInput("make_dimple_warp: centres " + std::to_string(i) + " and " +
-                                       std::to_string(j) + " are " +
-                                       fmt(distance(c_[i], c_[j])) + " apart, closer than 2 radius = " +
-                                       fmt(2.0 * radius) + " (the supports overlap)");
-        const double lip = dmax * kDimpleBumpSlope / radius;
-        if (!(lip < 1.0))
-            throw InvalidInput("make_dimple_warp: the displacement field has Lipschitz constant " +
-                               fmt(lip) + " >= 1 (largest displacement " + fmt(dmax) +
-                               ", radius " + fmt(radius) +
-                               "): not a diffeomorphism; use a larger radius or smaller "
-                               "displacements");
-        r2_ = radius * radius;
-    }
-    [[nodiscard]] std::string name() const override { return "dimple"; }
-    [[nodiscard]] Point3 apply(double t, const Point3& x) const override {
-        const double p = cycle_profile(u(t));
-        if (p == 0.0) return x;
-        for (std::size_t k = 0; k < c_.size(); ++k) {
-            const double d2 = sqdistance(x, c_[k]);
-            if (d2 < r2_) {  // the supports are disjoint: at most one centre moves x
-                const double q = 1.0 - d2 / r2_;
-                return x + d_[k] * (p * q * q * q);
-            }
-        }
-        return x;
-    }
-
-private:
-    std::vector<Point3> c_;
-    std::vector<Vec3> d_;
-    double r2_ = 0;
-};
-
-// ---- a uniform hash grid -------------------------------------------------------------------
-
-/// Points in cubic cells of side `cell`, found through an open-addressing table keyed by
-/// the integer cell coordinates; the points of a cell form a linked list. Insert-only.
-class HashGrid {
-public:
-    HashGrid(double cell, std::size_t expected) : cell_(cell), inv_(1.0 / cell) {
-        std::size_t n = 16;
-        while (n < 2 * expected + 16) n *= 2;
-        table_.assign(n, Slot{});
-        mask_ = n - 1;
-        pts_.reserve(expected);
-        ids_.reserve(expected);
-        next_.reserve(expected);
-    }
-
-    void insert(std::uint32_t id, const Point3& p) {
-        const auto c = coords(p);
-        if (2 * (cells_ + 1) > table_.size()) grow();
-        Slot& s = find_or_add(c[0], c[1], c[2]);
-        const auto e = static_cast<std::uint32_t>(pts_.size());
-        pts_.push_back(p);
-        ids_.push_back(id);
-        next_.push_back(s.head);
-        s.head = e;
-        for (int i = 0; i < 3; ++i) {
-            lo_[i] = std::min(lo_[i], c[i]);
-            hi_[i] = std::max(hi_[i], c[i]);
-        }
-    }
-    [[nodiscard]] std::size_t size() const { return pts_.size(); }
-
-    /// Calls f(id, squared distance) for every point within distance r of p (closed ball).
-    template <class F>
-    void for_each_within(const Point3& p, double r, F&& f) const {
-        if (pts_.empty()) return;
-        const double r2 = r * r;
-        const auto a = coords(p - Vec3{r, r, r}), b = coords(p + Vec3{r, r, r});
-        std::array<std::int64_t, 3> l{}, h{};
-        for (int i = 0; i < 3; ++i) {
-            l[i] = std::max(a[i], lo_[i]);
-            h[i] = std::min(b[i], hi_[i]);
-            if (l[i] > h[i]) return;
-        }
-        for (std::int64_t x = l[0]; x <= h[0]; ++x)
-            for (std::int64_t y = l[1]; y <= h[1]; ++y)
-                for (std::int64_t z = l[2]; z <= h[2]; ++z) {
-                    const Slot* s = find(x, y, z);
-                    if (s == nullptr) continue;
-                    for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
-                        const double d2 = sqdistance(pts_[e], p);
-                        if (d2 <= r2) f(ids_[e], d2);
-                    }
-                }
-    }
-
-    /// True when some point lies within distance r of q (closed ball).
-    [[nodiscard]] bool any_within(const Point3& q, double r) const {
-        if (pts_.empty()) return false;
-        const double r2 = r * r;
-        const auto a = coords(q - Vec3{r, r, r}), b = coords(q + Vec3{r, r, r});
-        for (std::int64_t x = std::max(a[0], lo_[0]); x <= std::min(b[0], hi_[0]); ++x)
-            for (std::int64_t y = std::max(a[1], lo_[1]); y <= std::min(b[1], hi_[1]); ++y)
-                for (std::int64_t z = std::max(a[2], lo_[2]); z <= std::min(b[2], hi_[2]); ++z) {
-                    const Slot* s = find(x, y, z);
-                    if (s == nullptr) continue;
-                    for (std::uint32_t e = s->head; e != kNone; e = next_[e])
-                        if (sqdistance(pts_[e], q) <= r2) return true;
-                }
-        return false;
-    }
-
-    /// Squared distance from q to the nearest point whose id differs from `exclude`, exact
-    /// when it is > stop_sq; otherwise some value <= stop_sq (the search stops early).
-    /// Infinity when there is no such point.
-    [[nodiscard]] double nearest_sq(const Point3& q, double stop_sq = -1.0,
-                                    std::uint32_t exclude = kNone) const {
-        return nearest(q, stop_sq, exclude).first;
-    }
-    /// As nearest_sq, with the id of the point found (kNone for none).
-    [[nodiscard]] std::pair<double, std::uint32_t> nearest(const Point3& q, double stop_sq = -1.0,
-                                                           std::uint32_t exclude = kNone) const {
-        double best = std::numeric_limits<double>::infinity();
-        std::uint32_t best_id = kNone;
-        if (pts_.empty()) return {best, best_id};
-        const auto c = coords(q);
-        for (std::int64_t k = 0;; ++k) {
-            // Visit the cells at Chebyshev distance exactly k from c (clipped to the occupied
-            // box).
-            bool any_inside = false;
-            for (std::int64_t dx = -k; dx <= k; ++dx) {
-                const std::int64_t x = c[0] + dx;
-                if (x < lo_[0] || x > hi_[0]) continue;
-                for (std::int64_t dy = -k; dy <= k; ++dy) {
-                    const std::int64_t y = c[1] + dy;
-                    if (y < lo_[1] || y > hi_[1]) continue;
-                    const bool face = (dx == -k || dx == k || dy == -k || dy == k);
-                    const std::int64_t step = face ? 1 : std::max<std::int64_t>(2 * k, 1);
-                    for (std::int64_t dz = -k; dz <= k; dz += step) {
-                        const std::int64_t z = c[2] + dz;
-                        if (z < lo_[2] || z > hi_[2]) continue;
-                        any_inside = true;
-                        const Slot* s = find(x, y, z);
-                        if (s == nullptr) continue;
-                        for (std::uint32_t e = s->head; e != kNone; e = next_[e]) {
-                            if (ids_[e] == exclude) continue;
-                            const double d2 = sqdistance(pts_[e], q);
-                            if (d2 < best || (d2 == best && ids_[e] < best_id)) {
-                                best = d2;
-                                best_id = ids_[e];
-                            }
-                        }
-                    }
-                }
-            }
-            // Every point not yet seen is at distance >= k * cell.
-            const double seen = static_cast<double>(k) * cell_;
-            if (best <= seen * seen || best <= stop_sq) return {best, best_id};
-            if (!any_inside && covers_box(c, k)) return {best, best_id};
-        }
-    }
-
-private:
-    struct Slot {
-        std::int64_t x = 0, y = 0, z = 0;
-        std::uint32_t head = kNone;
-        bool used = false;
-    };
-
-    [[nodiscard]] std::array<std::int64_t, 3> coords(const Point3& p) const {
-        auto f = [&](double v) {
-            const double c = std::floor(v * inv_);
-            return static_cast<std::int64_t>(std::clamp(c, -4e15, 4e15));
-        };
-        return {f(p.x), f(p.y), f(p.z)};
-    }
-    [[nodiscard]] std::size_t hash(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        return static_cast<std::size_t>(hash_cell(x, y, z)) & mask_;
-    }
-    [[nodiscard]] const Slot* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
-            const Slot& s = table_[i];
-            if (!s.used) return nullptr;
-            if (s.x == x && s.y == y && s.z == z) return &s;
-        }
-    }
-    Slot& find_or_add(std::int64_t x, std::int64_t y, std::int64_t z) {
-        for (std::size_t i = hash(x, y, z);; i = (i + 1) & mask_) {
-            Slot& s = table_[i];
-            if (!s.used) {
-                s = Slot{x, y, z, kNone, true};
-                ++cells_;
-                return s;
-            }
-            if (s.x == x && s.y == y && s.z == z) return s;
-        }
-    }
-    void grow() {
-        std::vector<Slot> old = std::move(table_);
-        table_.assign(old.size() * 2, Slot{});
-        mask_ = table_.size() - 1;
-        for (const Slot& s : old) {
-            if (!s.used) continue;
-            for (std::size_t i = hash(s.x, s.y, s.z);; i = (i + 1) & mask_)
-                if (!table_[i].used) {
-                    table_[i] = s;
-                    break;
-                }
-        }
-    }
-    /// True when the cube of cells at Chebyshev distance <= k from c contains the box of
-    /// occupied cells.
-    [[nodiscard]] bool covers_box(const std::array<std::int64_t, 3>& c, std::int64_t k) const {
-        for (int i = 0; i < 3; ++i)
-            if (c[i] - k > lo_[i] || c[i] + k < hi_[i]) return false;
-        return true;
-    }
-
-    double cell_, inv_;
-    std::vector<Slot> table_;
-    std::size_t mask_ = 0, cells_ = 0;
-    std::vector<Point3> pts_;
-    std::vector<std::uint32_t> ids_, next_;
-    std::array<std::int64_t, 3> lo_{INT64_MAX, INT64_MAX, INT64_MAX};
-    std::array<std::int64_t, 3> hi_{INT64_MIN, INT64_MIN, INT64_MIN};
-};
 
 /// A cell size for n points spread over a surface with this bounding box: about the mean
 /// spacing of a sphere-like surface.
@@ -460,11 +40,7 @@ Bbox3 bbox_of(std::span<const Point3> pts) {
     return b;
 }
 
-HashGrid grid_of(std::span<const Point3> pts, double cell) {
-    HashGrid g(cell, pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i) g.insert(static_cast<std::uint32_t>(i), pts[i]);
-    return g;
-}
+constexpr auto kAny = [](std::uint32_t) { return true; };
 
 // ---- scenario construction -----------------------------------------------------------------
 
@@ -612,10 +188,12 @@ void finish(Scenario& s) {
     s.h0 = covering_radius(reference_probes(s.reference), p0);
 
     // Typical spacing: median nearest-neighbour distance within P(0).
-    const HashGrid g0 = grid_of(p0, surface_cell(bbox_of(p0), p0.size()));
+    const PointGrid g0 = PointGrid::bulk(surface_cell(bbox_of(p0), p0.size()), p0);
     std::vector<double> nn(p0.size());
-    for (std::size_t i = 0; i < p0.size(); ++i)
-        nn[i] = std::sqrt(g0.nearest_sq(p0[i], -1.0, static_cast<std::uint32_t>(i)));
+    for (std::size_t i = 0; i < p0.size(); ++i) {
+        const auto other = [i](std::uint32_t id) { return id != i; };
+        nn[i] = g0.nearest(p0[i], PointGrid::positions(p0), other).second;
+    }
     const auto mid = nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2);
     std::nth_element(nn.begin(), mid, nn.end());
     s.spacing0 = *mid;
@@ -624,11 +202,12 @@ void finish(Scenario& s) {
                            "': more than half of the initial samples coincide with another one");
 
     s.density_radius = 4.0 * s.spacing0;
-    const HashGrid gd = grid_of(p0, s.density_radius);
+    const PointGrid gd = PointGrid::bulk(s.density_radius, p0);
     s.initial_density.assign(pool.size(), 0);
     for (std::size_t i = 0; i < pool.size(); ++i) {
         std::uint32_t n = 0;
-        gd.for_each_within(pool[i], s.density_radius, [&](std::uint32_t, double) { ++n; });
+        gd.for_each_within(pool[i], s.density_radius, PointGrid::positions(p0),
+                           [&](std::uint32_t, double) { ++n; });
         s.initial_density[i] = n;
     }
 
@@ -830,54 +409,6 @@ Scenario mesh_scenario(const std::string& path, const ScenarioOptions& o, double
 
 }  // namespace
 
-// ---- warp factories ------------------------------------------------------------------------
-
-std::unique_ptr<Warp> make_pulse_warp(const Point3& center, double max_scale, double rate) {
-    return std::make_unique<PulseWarp>(center, max_scale, rate);
-}
-std::unique_ptr<Warp> make_stretch_warp(const Point3& center, const Vec3& axis,
-                                        double max_stretch, double rate) {
-    return std::make_unique<StretchWarp>(center, axis, max_stretch, rate);
-}
-std::unique_ptr<Warp> make_twist_warp(const Point3& center, const Vec3& axis, double half_length,
-                                      double end_angle, double rate) {
-    return std::make_unique<TwistWarp>(center, axis, half_length, end_angle, rate);
-}
-std::unique_ptr<Warp> make_bend_warp(const Point3& center, const Vec3& axis, const Vec3& toward,
-                                     double half_length, double max_turn, double pre_stretch,
-                                     double rate) {
-    return std::make_unique<BendWarp>(center, axis, toward, half_length, max_turn, pre_stretch,
-                                      rate);
-}
-std::unique_ptr<Warp> make_rotation_warp(const Point3& center, const Vec3& axis, double rate) {
-    return std::make_unique<RotationWarp>(center, axis, rate);
-}
-
-double dimple_bump(double r) {
-    if (!(std::abs(r) < 1.0)) return 0.0;
-    const double q = 1.0 - r * r;
-    return q * q * q;
-}
-std::unique_ptr<Warp> make_dimple_warp(std::vector<Point3> centers, std::vector<Vec3> displacements,
-                                       double radius, double rate) {
-    return std::make_unique<DimpleWarp>(std::move(centers), std::move(displacements), radius,
-                                        rate);
-}
-
-std::vector<Point3> fibonacci_sphere(std::size_t n) {
-    if (n == 0) throw InvalidInput("fibonacci_sphere: n must be >= 1");
-    const double golden = kPi * (3.0 - std::sqrt(5.0));
-    std::vector<Point3> out;
-    out.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const double z = 1.0 - (2.0 * static_cast<double>(i) + 1.0) / static_cast<double>(n);
-        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-        const double phi = golden * static_cast<double>(i);
-        out.push_back(Point3{r * std::cos(phi), r * std::sin(phi), z});
-    }
-    return out;
-}
-
 // ---- scenarios -----------------------------------------------------------------------------
 
 std::vector<std::string> scenario_names() { return analytic_names(); }
@@ -988,14 +519,14 @@ double covering_radius(std::span<const Point3> probes, std::span<const Point3> s
     if (samples.empty())
         throw InvalidInput("covering_radius: " + std::to_string(probes.size()) +
                            " probes but no sample");
-    const HashGrid g = grid_of(samples, surface_cell(bbox_of(samples), samples.size()));
+    const PointGrid g = PointGrid::bulk(surface_cell(bbox_of(samples), samples.size()), samples);
     double worst = 0;  // squared
     // A probe cannot raise the maximum once some sample is within it: try the sample found
     // for the previous probe first (a hit most of the time for spatially ordered probes).
     std::uint32_t last = kNone;
     for (const Point3& q : probes) {
         if (last != kNone && sqdistance(q, samples[last]) <= worst) continue;
-        const auto [d2, id] = g.nearest(q, worst);
+        const auto [id, d2] = g.nearest_sq(q, PointGrid::positions(samples), kAny, worst);
         worst = std::max(worst, d2);
         last = id;
     }
@@ -1017,107 +548,6 @@ double sampling_radius(const Scenario& s, double t, std::span<const std::uint32_
     SurfaceMesh warped = s.reference;
     warp_points(s, t, s.reference.positions(), warped.positions());
     return covering_radius(reference_probes(warped), pool_positions(s, t, live_pool));
-}
-
-// ---- sample edits --------------------------------------------------------------------------
-
-SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::uint32_t> live_pool,
-                              double insert_radius) {
-    SampleEditOptions o;
-    o.insert_radius = insert_radius;
-    return plan_sample_edits(s, t, live_pool, o);
-}
-
-SampleEdits plan_sample_edits(const Scenario& s, double t, std::span<const std::uint32_t> live_pool,
-                              const SampleEditOptions& o) {
-    const char* who = "plan_sample_edits";
-    check_positive(who, "insert_radius", o.insert_radius);
-    check_positive(who, "compress_ratio", o.compress_ratio);
-    check_positive(who, "target_ratio", o.target_ratio);
-    if (o.target_ratio > o.compress_ratio)
-        throw InvalidInput("plan_sample_edits: target_ratio (" + fmt(o.target_ratio) +
-                           ") must not exceed compress_ratio (" + fmt(o.compress_ratio) + ")");
-    const std::size_t m = s.pool_size();
-    std::vector<std::uint32_t> live(live_pool.begin(), live_pool.end());
-    std::sort(live.begin(), live.end());
-    for (std::size_t i = 0; i < live.size(); ++i) {
-        if (live[i] >= m)
-            throw InvalidInput("plan_sample_edits: live pool index " + std::to_string(live[i]) +
-                               " >= pool size " + std::to_string(m));
-        if (i > 0 && live[i] == live[i - 1])
-            throw InvalidInput("plan_sample_edits: live pool index " + std::to_string(live[i]) +
-                               " is listed twice");
-    }
-    const std::vector<Point3> pt = pool_positions(s, t);
-    enum : char { kAbsent = 0, kLive = 1, kInserted = 2 };
-    std::vector<char> state(m, kAbsent);
-    for (std::uint32_t i : live) state[i] = kLive;
-
-    SampleEdits out;
-    // 1. Insertions: greedy in index order.
-    {
-        HashGrid g(o.insert_radius, live.size() + 64);
-        for (std::uint32_t i : live) g.insert(i, pt[i]);
-        for (std::uint32_t i = 0; i < m; ++i) {
-            if (state[i] != kAbsent) continue;
-            if (!g.any_within(pt[i], o.insert_radius)) {
-                out.insert_pool.push_back(i);
-                state[i] = kInserted;
-                g.insert(i, pt[i]);
-            }
-        }
-    }
-    if (!o.deletions || live.size() < 2) return out;
-
-    // 2. Density ratios over live samples and planned insertions.
-    const double rd = s.density_radius;
-    HashGrid gd(rd, live.size() + out.insert_pool.size());
-    for (std::uint32_t i : live) gd.insert(i, pt[i]);
-    for (std::uint32_t i : out.insert_pool) gd.insert(i, pt[i]);
-    std::vector<std::uint32_t> count(m, 0);
-    std::vector<std::uint32_t> candidates;
-    auto ratio = [&](std::uint32_t p) {
-        return static_cast<double>(count[p]) /
-               static_cast<double>(std::max<std::uint32_t>(1, s.initial_density[p]));
-    };
-    for (std::uint32_t p : live) {
-        std::uint32_t n = 0;
-        gd.for_each_within(pt[p], rd, [&](std::uint32_t, double) { ++n; });
-        count[p] = n;
-        if (ratio(p) >= o.compress_ratio) candidates.push_back(p);
-    }
-    if (candidates.empty()) return out;
-    for (std::uint32_t i : out.insert_pool) {  // running counts are kept for insertions too
-        std::uint32_t n = 0;
-        gd.for_each_within(pt[i], rd, [&](std::uint32_t, double) { ++n; });
-        count[i] = n;
-    }
-
-    // 3. Deletions: greedy in index order, with protected keepers.
-    const double keep_r = std::min(s.spacing0, s.h0);
-    const std::size_t max_deleted = live.size() / 2;
-    std::vector<char> gone(m, 0), keep(m, 0);
-    for (std::uint32_t p : candidates) {
-        if (out.delete_pool.size() >= max_deleted) break;
-        if (keep[p] || !(ratio(p) > o.target_ratio)) continue;
-        std::uint32_t q = kNone;
-        double qd = std::numeric_limits<double>::infinity();
-        gd.for_each_within(pt[p], keep_r, [&](std::uint32_t id, double d2) {
-            if (id == p || gone[id]) return;
-            if (d2 < qd || (d2 == qd && id < q)) {
-                qd = d2;
-                q = id;
-            }
-        });
-        if (q == kNone || !(qd < keep_r * keep_r)) continue;
-        gone[p] = 1;
-        keep[q] = 1;
-        out.delete_pool.push_back(p);
-        gd.for_each_within(pt[p], rd, [&](std::uint32_t id, double) {
-            if (count[id] > 0) --count[id];
-        });
-    }
-    return out;
 }
 
 }  // namespace dynmesh

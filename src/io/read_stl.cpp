@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "dynmesh/io/input_file.hpp"
+#include "dynmesh/system/hash.hpp"
 #include "readers.hpp"
 
 namespace dynmesh::detail {
@@ -35,11 +36,8 @@ private:
         bool operator==(const Key&) const = default;
     };
     struct KeyHash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = k.x * 0x9e3779b97f4a7c15ull;
-            h ^= (h >> 29) ^ (k.y * 0xbf58476d1ce4e5b9ull);
-            h ^= (h >> 31) ^ (k.z * 0x94d049bb133111ebull);
-            return static_cast<std::size_t>(h ^ (h >> 32));
+        std::size_t operator()(const Key& k) const noexcept {
+            return static_cast<std::size_t>(hash_ints(k.x, k.y, k.z));
         }
     };
     TriangleSoup& soup_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <utility>
@@ -11,6 +12,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/system/hash.hpp"
 #include "dynmesh/system/parallel.hpp"
 
 namespace dynmesh {
@@ -31,12 +33,7 @@ bool is_simple_cycle(const std::vector<Vertex>& cycle) {
 }
 
 struct PairHash {
-    std::size_t operator()(std::uint64_t k) const noexcept {
-        k ^= k >> 33;
-        k *= 0xff51afd7ed558ccdULL;
-        k ^= k >> 33;
-        return static_cast<std::size_t>(k);
-    }
+    std::size_t operator()(std::uint64_t k) const noexcept { return static_cast<std::size_t>(mix64(k)); }
 };
 inline std::uint64_t key(std::uint32_t a, std::uint32_t b) {
     return (static_cast<std::uint64_t>(a) << 32) | b;
@@ -658,10 +655,16 @@ void SurfaceMesh::remove_vertex(Vertex v, std::span<const std::array<std::uint32
         DYNMESH_CHECK(used.count(key(i, j)) == 1 && used.count(key(j, i)) == 0,
                       where + "triangles do not cover link side " + std::to_string(i));
     }
+    // The diagonals in increasing (a, b) order: the first bad one named does not depend on
+    // the hash table's order.
+    std::vector<std::uint64_t> diagonals;
     for (const auto& [kk, cnt] : used) {
         const auto a = static_cast<std::uint32_t>(kk >> 32), b = static_cast<std::uint32_t>(kk);
-        const bool side = (b == (a + 1) % k) || (a == (b + 1) % k);
-        if (side) continue;
+        if ((b != (a + 1) % k) && (a != (b + 1) % k)) diagonals.push_back(kk);
+    }
+    std::sort(diagonals.begin(), diagonals.end());
+    for (const std::uint64_t kk : diagonals) {
+        const auto a = static_cast<std::uint32_t>(kk >> 32), b = static_cast<std::uint32_t>(kk);
         DYNMESH_CHECK(used.count(key(b, a)) == 1, where + "diagonal used in one direction only");
         DYNMESH_CHECK(!find_halfedge(link[a], link[b]).is_valid(),
                       where + "diagonal (" + vstr(link[a].idx()) + ", " + vstr(link[b].idx()) +
@@ -908,14 +911,18 @@ std::vector<Face> SurfaceMesh::replace_faces(std::span<const Face> remove,
     if (slots_used != slots.size())
         throw InvalidInput(where + std::to_string(slots.size() - slots_used) +
                            " edges of the hole's boundary are left open");
+    // An open edge: a new directed edge whose reverse no added triangle uses. The smallest
+    // is named, whatever the hash table's order.
+    std::uint64_t open = std::numeric_limits<std::uint64_t>::max();
     for (const auto& [k, uses] : fresh) {
         (void)uses;
         if (slots.count(k)) continue;
         const std::uint64_t back = (k << 32) | (k >> 32);
-        if (!fresh.count(back))
-            throw InvalidInput(where + "the added triangles leave edge (" + std::to_string(k >> 32) + ", " +
-                               std::to_string(k & 0xffffffffu) + ") open");
+        if (!fresh.count(back)) open = std::min(open, k);
     }
+    if (open != std::numeric_limits<std::uint64_t>::max())
+        throw InvalidInput(where + "the added triangles leave edge (" + std::to_string(open >> 32) + ", " +
+                           std::to_string(open & 0xffffffffu) + ") open");
 
     // Apply: delete, then link the new triangles into the slots and new edges.
     for (std::uint32_t fi : removed) delete_face(Face(fi));

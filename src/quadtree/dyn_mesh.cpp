@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/system/hash.hpp"
 #include "leaf_mesh.hpp"
 
 namespace dynmesh {
@@ -66,22 +67,12 @@ void for_cells_near(const CellId<D>& x, F&& f) {
 
 template <int D>
 std::size_t DynQuadMesh<D>::CellHash::operator()(const CellId<D>& c) const noexcept {
-    std::uint64_t h = static_cast<std::uint64_t>(c.level) * 0x9e3779b97f4a7c15ULL;
-    for (std::uint64_t v : c.index) {
-        h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-        h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    }
-    return static_cast<std::size_t>(h ^ (h >> 31));
+    return static_cast<std::size_t>(hash_range(c.index, static_cast<std::uint64_t>(c.level)));
 }
 
 template <int D>
 std::size_t DynQuadMesh<D>::LatticeHash::operator()(const Lattice& k) const noexcept {
-    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-    for (std::uint64_t v : k) {
-        h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-        h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    }
-    return static_cast<std::size_t>(h ^ (h >> 31));
+    return static_cast<std::size_t>(hash_range(k));
 }
 
 template <int D>

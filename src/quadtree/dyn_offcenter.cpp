@@ -23,8 +23,9 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/predicates.hpp"
-#include "dynmesh/quadtree/live_mesh.hpp"
 #include "dynmesh/geometry/format.hpp"
+#include "dynmesh/quadtree/live_mesh.hpp"
+#include "dynmesh/system/hash.hpp"
 
 namespace dynmesh {
 namespace {
@@ -87,12 +88,7 @@ struct CellKey {
 };
 struct CellKeyHash {
     std::size_t operator()(const CellKey& k) const noexcept {
-        std::uint64_t h = static_cast<std::uint64_t>(k.level) * 0x9e3779b97f4a7c15ULL;
-        h ^= static_cast<std::uint64_t>(k.ix) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-        h ^= static_cast<std::uint64_t>(k.iy) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-        h ^= h >> 31;
-        h *= 0xbf58476d1ce4e5b9ULL;
-        return static_cast<std::size_t>(h ^ (h >> 29));
+        return static_cast<std::size_t>(hash_ints(k.level, k.ix, k.iy));
     }
 };
 

@@ -3,56 +3,98 @@
 /// nearest-neighbour queries in expected O(1) per query when the points are well spaced
 /// relative to the cell size (the deforming-mesh paper's "uniform grid", §4.6, with a hash
 /// map in place of the radix sort).
+///
+/// Two ways to fill it, one set of queries:
+/// - dynamic: PointGrid(cell), then insert() and erase() in any order;
+/// - static: PointGrid::bulk(cell, points[, ids]) buckets every point at once (two linear
+///   passes into one array, each cell's ids contiguous); it cannot change afterwards, and it
+///   takes cell coordinates of any magnitude.
+/// The grid stores ids only: queries that measure distances take `pos(id)`, the position of
+/// an id (the position it was inserted at).
+///
+/// Usage
+/// \code
+///   const PointGrid g = PointGrid::bulk(h, pts);               // ids 0 .. pts.size() - 1
+///   const auto pos = PointGrid::positions(pts);                 // pos(i) = pts[i]
+///   g.for_each_within(q, r, pos, [&](std::uint32_t id, double d2) { ... });
+///   const auto [id, d] = g.nearest(q, pos, [](std::uint32_t) { return true; });
+/// \endcode
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/system/hash.hpp"
 
 namespace dynmesh {
 
-/// A well-mixed 64-bit hash of integer cell coordinates (for hash tables of grid cells).
-[[nodiscard]] inline std::uint64_t hash_cell(std::int64_t x, std::int64_t y, std::int64_t z) {
-    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-    h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-    h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-    h ^= h >> 31;
-    h *= 0xD6E8FEB86659FD93ull;
-    h ^= h >> 32;
-    return h;
-}
-
 class PointGrid {
 public:
-    /// \pre cell > 0 and finite.
+    static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+    /// An empty dynamic grid. \pre cell > 0 and finite.
     explicit PointGrid(double cell = 1.0) { reset(cell); }
 
-    /// Empties the grid and sets a new cell size.
+    /// A static grid of the ids 0 .. points.size() - 1 at `points`.
+    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points) {
+        PointGrid g(cell);
+        g.build(points.size(), [&](std::size_t i) { return points[i]; },
+                [](std::size_t i) { return static_cast<std::uint32_t>(i); });
+        return g;
+    }
+    /// A static grid of `ids`, id i at points[i]. \pre every id < points.size().
+    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points,
+                                        std::span<const std::uint32_t> ids) {
+        PointGrid g(cell);
+        g.build(ids.size(), [&](std::size_t k) { return points[ids[k]]; },
+                [&](std::size_t k) { return ids[k]; });
+        return g;
+    }
+
+    /// pos(id) = points[id]: the `pos` of the queries below for positions held in an array.
+    [[nodiscard]] static auto positions(std::span<const Point3> points) {
+        return [points](std::uint32_t id) -> const Point3& { return points[id]; };
+    }
+
+    /// Empties the grid (dynamic again) and sets a new cell size.
     void reset(double cell) {
         DYNMESH_CHECK(std::isfinite(cell) && cell > 0, "PointGrid: the cell size must be positive and finite");
         cell_ = cell;
         inv_ = 1.0 / cell;
+        limit_ = kDynamicLimit;
         cells_.clear();
         std::fill(occupied_.begin(), occupied_.end(), 0);
+        table_.clear();
+        ids_.clear();
+        mask_ = 0;
+        n_cells_ = 0;
         size_ = 0;
     }
     [[nodiscard]] double cell() const { return cell_; }
     [[nodiscard]] std::size_t size() const { return size_; }
+    /// True for a grid made by bulk() (no insert or erase).
+    [[nodiscard]] bool is_static() const { return !table_.empty(); }
 
+    /// \pre a dynamic grid.
     void insert(std::uint32_t id, const Point3& p) {
+        DYNMESH_CHECK(!is_static(), "PointGrid::insert: a grid made by bulk() cannot change");
         const Key k = key(p);
         cells_[k].push_back(id);
         mark(k);
         ++size_;
     }
     /// Removes id, which must have been inserted at p. Returns false when it is not there.
+    /// \pre a dynamic grid.
     bool erase(std::uint32_t id, const Point3& p) {
+        DYNMESH_CHECK(!is_static(), "PointGrid::erase: a grid made by bulk() cannot change");
         auto it = cells_.find(key(p));
         if (it == cells_.end()) return false;
         auto& v = it->second;
@@ -71,55 +113,92 @@ public:
     /// superset of the ids within distance r; the caller measures the distance).
     template <class F>
     void for_each_candidate(const Point3& p, double r, F&& f) const {
-        const std::int64_t x0 = coord(p.x - r), x1 = coord(p.x + r);
-        const std::int64_t y0 = coord(p.y - r), y1 = coord(p.y + r);
-        const std::int64_t z0 = coord(p.z - r), z1 = coord(p.z + r);
-        if ((x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1) > static_cast<std::int64_t>(cells_.size()) + 64) {
-            for (const auto& [k, ids] : cells_)
-                for (std::uint32_t id : ids) f(id);
-            return;
-        }
-        for (std::int64_t x = x0; x <= x1; ++x)
-            for (std::int64_t y = y0; y <= y1; ++y)
-                for (std::int64_t z = z0; z <= z1; ++z) {
-                    const Key k = pack(x, y, z);
-                    if (!maybe_occupied(k)) continue;  // most cells of a query are empty
-                    auto it = cells_.find(k);
-                    if (it == cells_.end()) continue;
-                    for (std::uint32_t id : it->second) f(id);
-                }
+        visit_cube(p, r, [&](std::uint32_t id) {
+            f(id);
+            return false;
+        });
+    }
+    /// Calls f(id, squared distance) for every id within distance r of p (closed ball).
+    template <class Pos, class F>
+    void for_each_within(const Point3& p, double r, Pos&& pos, F&& f) const {
+        const double r2 = r * r;
+        visit_cube(p, r, [&](std::uint32_t id) {
+            const double d2 = sqdistance(pos(id), p);
+            if (d2 <= r2) f(id, d2);
+            return false;
+        });
+    }
+    /// True when some id lies within distance r of p (closed ball); stops at the first.
+    template <class Pos>
+    [[nodiscard]] bool any_within(const Point3& p, double r, Pos&& pos) const {
+        const double r2 = r * r;
+        return visit_cube(p, r, [&](std::uint32_t id) { return sqdistance(pos(id), p) <= r2; });
     }
 
-    /// The id nearest to p among those accepted by `keep(id)`, with its distance; searches
-    /// rings of growing radius, so the cost is proportional to the distance found. Ties break
-    /// on the smaller id. Returns {UINT32_MAX, inf} for an empty grid or no accepted id.
-    /// `pos(id)` gives the position of an id.
+    /// The id nearest to p among those accepted by `keep(id)`, with its distance. Ties break
+    /// on the smaller id. Returns {kNone, inf} for an empty grid or no accepted id.
     template <class Pos, class Keep>
     [[nodiscard]] std::pair<std::uint32_t, double> nearest(const Point3& p, Pos&& pos, Keep&& keep) const {
-        std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
+        const auto [id, d2] = nearest_sq(p, pos, keep);
+        return {id, std::sqrt(d2)};
+    }
+    /// As nearest, with the squared distance, and allowed to stop early: once some accepted id
+    /// within sqrt(stop_sq) of p is found, it returns one such id (not necessarily the
+    /// nearest). The answer is exact when the nearest squared distance exceeds stop_sq. The
+    /// search visits shells of cells around p's cell, so the cost grows with the distance
+    /// found, and is at most one pass over the grid.
+    template <class Pos, class Keep>
+    [[nodiscard]] std::pair<std::uint32_t, double> nearest_sq(const Point3& p, Pos&& pos, Keep&& keep,
+                                                              double stop_sq = -1.0) const {
+        std::uint32_t best = kNone;
         double bd2 = std::numeric_limits<double>::infinity();
+        auto consider = [&](std::uint32_t id) {
+            if (!keep(id)) return;
+            const double d2 = sqdistance(pos(id), p);
+            if (d2 < bd2 || (d2 == bd2 && id < best)) {
+                bd2 = d2;
+                best = id;
+            }
+        };
         if (size_ == 0) return {best, bd2};
-        for (double r = cell_;; r *= 2) {
-            for_each_candidate(p, r, [&](std::uint32_t id) {
-                if (!keep(id)) return;
-                const double d2 = sqnorm(pos(id) - p);
-                if (d2 < bd2 || (d2 == bd2 && id < best)) {
-                    bd2 = d2;
-                    best = id;
+        const std::int64_t cx = coord(p.x), cy = coord(p.y), cz = coord(p.z);
+        for (std::int64_t k = 0;; ++k) {
+            const double side = static_cast<double>(2 * k + 1);
+            if (side * side * side > static_cast<double>(n_cells()) + 64) {
+                // The cube of shells 0..k has more cells than the grid: look at every id.
+                for_each_id([&](std::uint32_t id) {
+                    consider(id);
+                    return false;
+                });
+                return {best, bd2};
+            }
+            // The cells at Chebyshev distance exactly k from p's cell.
+            for (std::int64_t dx = -k; dx <= k; ++dx)
+                for (std::int64_t dy = -k; dy <= k; ++dy) {
+                    const bool face = dx == -k || dx == k || dy == -k || dy == k;
+                    const std::int64_t step = face ? 1 : std::max<std::int64_t>(2 * k, 1);
+                    for (std::int64_t dz = -k; dz <= k; dz += step)
+                        visit_cell(cx + dx, cy + dy, cz + dz, [&](std::uint32_t id) {
+                            consider(id);
+                            return false;
+                        });
                 }
-            });
-            // Everything within distance r has been seen (the cube of half-width r covers it).
-            if (bd2 <= r * r) break;
-            if (r > 1e300 || exhausted(p, r)) break;
+            // Every id not seen yet is at distance >= k * cell from p.
+            const double seen = static_cast<double>(k) * cell_;
+            if (bd2 <= seen * seen || bd2 <= stop_sq) return {best, bd2};
         }
-        return {best, std::sqrt(bd2)};
     }
 
 private:
     using Key = std::uint64_t;
+
+    // ---- cell coordinates ------------------------------------------------------------------
+    // A dynamic grid packs its cell coordinates into one 64-bit key, so they are clamped to
+    // +-1e6; a static grid keeps them whole (clamped to +-4e15, where doubles are still exact
+    // integers). Clamping merges the outermost cells and never loses a point.
+    static constexpr double kDynamicLimit = 1e6, kStaticLimit = 4e15;
     [[nodiscard]] std::int64_t coord(double x) const {
-        const double c = std::floor(x * inv_);
-        return static_cast<std::int64_t>(std::clamp(c, -1e6, 1e6));
+        return static_cast<std::int64_t>(std::clamp(std::floor(x * inv_), -limit_, limit_));
     }
     static Key pack(std::int64_t x, std::int64_t y, std::int64_t z) {
         constexpr std::int64_t off = 1 << 20;
@@ -127,27 +206,126 @@ private:
                static_cast<Key>(z + off);
     }
     [[nodiscard]] Key key(const Point3& p) const { return pack(coord(p.x), coord(p.y), coord(p.z)); }
-    /// True when the cube of half-width r around p already covered every cell (the whole
-    /// grid was scanned).
-    [[nodiscard]] bool exhausted(const Point3& p, double r) const {
-        const std::int64_t n = (coord(p.x + r) - coord(p.x - r) + 1) * (coord(p.y + r) - coord(p.y - r) + 1) *
-                               (coord(p.z + r) - coord(p.z - r) + 1);
-        return n > static_cast<std::int64_t>(cells_.size()) + 64;
+    [[nodiscard]] std::size_t n_cells() const { return is_static() ? n_cells_ : cells_.size(); }
+
+    // ---- visiting ids; f(id) returns true to stop -------------------------------------------
+    /// The ids of every cell meeting the cube of half-width r around p, cell by cell in
+    /// (x, y, z) order, or of the whole grid when the cube has more cells than the grid.
+    /// Returns true when f stopped the visit.
+    template <class F>
+    bool visit_cube(const Point3& p, double r, F&& f) const {
+        const std::int64_t x0 = coord(p.x - r), x1 = coord(p.x + r);
+        const std::int64_t y0 = coord(p.y - r), y1 = coord(p.y + r);
+        const std::int64_t z0 = coord(p.z - r), z1 = coord(p.z + r);
+        const double n = static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) *
+                         static_cast<double>(z1 - z0 + 1);
+        if (n > static_cast<double>(n_cells()) + 64) return for_each_id(f);
+        for (std::int64_t x = x0; x <= x1; ++x)
+            for (std::int64_t y = y0; y <= y1; ++y)
+                for (std::int64_t z = z0; z <= z1; ++z)
+                    if (visit_cell(x, y, z, f)) return true;
+        return false;
+    }
+    /// The ids of the cell (x, y, z), in the order they came.
+    template <class F>
+    bool visit_cell(std::int64_t x, std::int64_t y, std::int64_t z, F&& f) const {
+        if (is_static()) {
+            const Cell* c = find(x, y, z);
+            if (c == nullptr) return false;
+            for (std::uint32_t k = c->begin; k < c->end; ++k)
+                if (f(ids_[k])) return true;
+            return false;
+        }
+        const Key k = pack(x, y, z);
+        if (!maybe_occupied(k)) return false;  // most cells of a query are empty
+        const auto it = cells_.find(k);
+        if (it == cells_.end()) return false;
+        for (std::uint32_t id : it->second)
+            if (f(id)) return true;
+        return false;
+    }
+    /// Every id of the grid.
+    template <class F>
+    bool for_each_id(F&& f) const {
+        for (std::uint32_t id : ids_)
+            if (f(id)) return true;
+        for (const auto& [k, ids] : cells_)
+            for (std::uint32_t id : ids)
+                if (f(id)) return true;
+        return false;
     }
 
+    // ---- dynamic storage: a hash map of cells -----------------------------------------------
     /// A one-hash Bloom filter of the occupied cells: a clear bit proves a cell empty without a
     /// hash-map lookup. Erasing leaves bits set (they only cost a lookup); reset() clears them.
     static constexpr std::size_t kFilterBits = std::size_t{1} << 15;
-    [[nodiscard]] static std::size_t filter_bit(Key k) { return hash_cell(std::int64_t(k), 0, 0) & (kFilterBits - 1); }
+    [[nodiscard]] static std::size_t filter_bit(Key k) { return mix64(k) & (kFilterBits - 1); }
     void mark(Key k) { occupied_[filter_bit(k) >> 6] |= std::uint64_t{1} << (filter_bit(k) & 63); }
     [[nodiscard]] bool maybe_occupied(Key k) const {
         return (occupied_[filter_bit(k) >> 6] >> (filter_bit(k) & 63)) & 1u;
     }
 
+    // ---- static storage: an open-addressing table of cells over one array of ids ------------
+    struct Cell {
+        std::int64_t x = 0, y = 0, z = 0;
+        std::uint32_t begin = kNone, end = 0;  // ids_[begin, end); begin == kNone: a free slot
+    };
+    [[nodiscard]] std::size_t slot(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        std::size_t i = static_cast<std::size_t>(hash_ints(x, y, z)) & mask_;
+        while (table_[i].begin != kNone && !(table_[i].x == x && table_[i].y == y && table_[i].z == z))
+            i = (i + 1) & mask_;
+        return i;
+    }
+    [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        const Cell& c = table_[slot(x, y, z)];
+        return c.begin == kNone ? nullptr : &c;
+    }
+    /// Buckets n ids (id(k) at at(k)): a first pass counts the ids of each cell, a second
+    /// places them, each cell's ids contiguous and in the order given.
+    template <class At, class Id>
+    void build(std::size_t n, At&& at, Id&& id) {
+        DYNMESH_CHECK(n < kNone, "PointGrid::bulk: too many points");
+        std::size_t slots = 16;
+        while (slots < 2 * n) slots *= 2;
+        table_.assign(slots, Cell{});
+        mask_ = slots - 1;
+        limit_ = kStaticLimit;
+        std::vector<std::uint32_t> where(n);  // the slot of each id's cell
+        for (std::size_t k = 0; k < n; ++k) {
+            const Point3 p = at(k);
+            const std::int64_t x = coord(p.x), y = coord(p.y), z = coord(p.z);
+            const std::size_t s = slot(x, y, z);
+            Cell& c = table_[s];
+            if (c.begin == kNone) {
+                c = Cell{x, y, z, 0, 0};
+                ++n_cells_;
+            }
+            ++c.end;  // the count, for now
+            where[k] = static_cast<std::uint32_t>(s);
+        }
+        std::uint32_t start = 0;
+        for (Cell& c : table_)
+            if (c.begin != kNone) {
+                c.begin = start;
+                start += c.end;
+                c.end = c.begin;  // the fill position, the end once every id is placed
+            }
+        ids_.resize(n);
+        for (std::size_t k = 0; k < n; ++k) ids_[table_[where[k]].end++] = id(k);
+        size_ = n;
+    }
+
     double cell_ = 1, inv_ = 1;
+    double limit_ = kDynamicLimit;  // cell coordinates are clamped to +-limit_
+    std::size_t size_ = 0;
+    std::size_t n_cells_ = 0;  // occupied cells (static grids; dynamic ones use cells_.size())
+    // dynamic
     std::unordered_map<Key, std::vector<std::uint32_t>> cells_;
     std::vector<std::uint64_t> occupied_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);
-    std::size_t size_ = 0;
+    // static
+    std::vector<Cell> table_;
+    std::size_t mask_ = 0;
+    std::vector<std::uint32_t> ids_;
 };
 
 }  // namespace dynmesh

@@ -53,6 +53,7 @@
 
 #include "dynmesh/check_report.hpp"
 #include "dynmesh/geometry/vec.hpp"
+#include "dynmesh/system/hash.hpp"
 
 namespace dynmesh {
 
@@ -224,16 +225,8 @@ private:
         }
     };
     struct KeyHash {
-        static constexpr std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser
-            x += 0x9e3779b97f4a7c15ULL;
-            x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-            x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-            return x ^ (x >> 31);
-        }
         std::size_t operator()(const Key& k) const noexcept {
-            std::uint64_t h = mix(static_cast<std::uint64_t>(k.level));
-            for (std::uint64_t v : k.a) h = mix(h ^ v);
-            return static_cast<std::size_t>(h);
+            return static_cast<std::size_t>(hash_range(k.a, static_cast<std::uint64_t>(k.level)));
         }
     };
     using Entry = StoredPoint;
