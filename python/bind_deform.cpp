@@ -138,6 +138,10 @@ void bind_deform(py::module_& m) {
                 d["substeps"] = s.substeps;
                 d["internal_updates"] = s.internal_updates;
                 d["max_strain_ratio"] = s.max_strain_ratio;
+                d["retries"] = s.retries;
+                d["inverted_triangles"] = s.inverted_triangles;
+                d["new_folds"] = s.new_folds;
+                d["self_intersecting"] = s.self_intersecting;
                 d["violations"] = violations_list(s.violations);
                 return d;
             },

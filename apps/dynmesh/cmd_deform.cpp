@@ -82,6 +82,7 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     j["substeps"] = r.substeps;
     j["max_substeps_per_unit"] = r.max_substeps_per_unit;
     j["internal_updates"] = r.internal_updates;
+    j["substep_retries"] = r.substep_retries;
     j["max_strain_ratio"] = r.max_strain_ratio;
     j["flips"] = r.flips;
     j["insertions"] = r.insertions;
@@ -112,6 +113,8 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     j["flip_refusals"] = r.flip_refusals;
     j["first_self_intersection_t"] = r.first_self_intersection_t;
     j["first_inverted_t"] = r.first_inverted_t;
+    j["first_self_intersection"] = r.first_self_intersection;
+    j["first_inverted"] = r.first_inverted;
     j["init_vertices"] = r.init_vertices;
     j["euler"] = r.euler;
     j["warnings"] = r.warnings;

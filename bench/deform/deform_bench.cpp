@@ -110,6 +110,45 @@ void update_bench(benchmark::State& state, bool sorted) {
 void BM_DeformUpdate(benchmark::State& state) { update_bench(state, false); }
 void BM_DeformUpdateSorted(benchmark::State& state) { update_bench(state, true); }
 
+/// A fast frame (issue "Deforming real meshes": one update with all its sub-steps): every
+/// unit stretches x by 1.25 or back, so edges move relative to each other by about four
+/// budgets 2 R / kappa and advance() cuts the unit into sub-steps with updates between them,
+/// then checks the mesh for self-intersections; update() follows at every unit. Timed:
+/// advance() + update(), against the same CGAL rebuild.
+void BM_DeformFastFrame(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    static std::map<std::size_t, std::unique_ptr<DeformingMesh>> cache;
+    const Sphere sphere(Point3{0, 0, 0}, 1.0);
+    const std::vector<Point3> p0 = sphere.sample_uniform(n, 1);
+    auto& dm = cache[n];
+    if (!dm) {
+        DeformOptions params;
+        params.lambda = 2e-4;
+        params.h0_probes = std::max<std::size_t>(n, 100000);
+        dm = std::make_unique<DeformingMesh>(p0, params, InitialSurface{.surface = &sphere});
+    }
+    std::vector<Point3> pos(p0.size());
+    std::size_t substeps = 0, internal = 0, frames = 0, retries = 0;
+    for (auto _ : state) {
+        const int t = dm->time() + 1;
+        const double s = t % 2 == 1 ? 1.25 : 1.0;
+        for (std::size_t i = 0; i < p0.size(); ++i) pos[i] = Point3{p0[i].x * s, p0[i].y, p0[i].z};
+        const auto start = Clock::now();
+        const StepReport st = dm->advance(t, pos);
+        dm->update();
+        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+        substeps += st.substeps;
+        internal += st.internal_updates;
+        retries += st.retries;
+        ++frames;
+    }
+    state.counters["samples"] = double(n);
+    state.counters["vertices"] = double(dm->mesh().n_vertices());
+    state.counters["substeps"] = double(substeps) / double(frames);
+    state.counters["internal_updates"] = double(internal) / double(frames);
+    state.counters["retries"] = double(retries) / double(frames);
+}
+
 /// The baseline: a from-scratch advancing-front reconstruction of the same samples at the
 /// positions of the last update.
 void BM_CgalAdvancingFrontRebuild(benchmark::State& state) {
@@ -130,6 +169,8 @@ BENCHMARK(BM_DeformUpdate)->RangeMultiplier(10)->Range(10000, 1000000)->UseManua
     ->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_DeformUpdateSorted)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_DeformFastFrame)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(4);
 BENCHMARK(BM_CgalAdvancingFrontRebuild)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -148,6 +189,18 @@ void print_summary(const dynmesh::bench::RecordingReporter& rep) {
         else
             std::printf(" %14s %10s", "-", "-");
         if (sorted.count(n)) std::printf(" %12.4f %12.2f", sorted.at(n).seconds, r.seconds / sorted.at(n).seconds);
+        std::printf("\n");
+    }
+    const auto& fast = rep.runs("BM_DeformFastFrame");
+    std::printf("\nSummary: one fast frame (advance with its sub-steps, updates and intersection check, then "
+                "update) vs. the CGAL rebuild\n");
+    std::printf("%10s %10s %10s %10s %8s %12s %12s %14s %10s\n", "samples", "vertices", "substeps", "internal", "retries",
+                "frame s", "ns/sample", "CGAL rebuild s", "frame/CGAL");
+    for (const auto& [n, r] : fast) {
+        std::printf("%10zu %10.0f %10.1f %10.1f %8.2f %12.4f %12.1f", n, r.counter("vertices", 0), r.counter("substeps", 0),
+                    r.counter("internal_updates", 0), r.counter("retries", 0), r.seconds, r.seconds / double(n) * 1e9);
+        if (cgal.count(n))
+            std::printf(" %14.3f %10.3f", cgal.at(n).seconds, r.seconds / cgal.at(n).seconds);
         std::printf("\n");
     }
 }

@@ -23,6 +23,7 @@
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
 #include "rigid_fit.hpp"
+#include "star_intersection.hpp"
 
 namespace dynmesh {
 
@@ -137,6 +138,10 @@ struct DeformingMesh::Impl {
     std::size_t folded_now = 0;  ///< as measured by the last advance()  ///< edges with edge-angle <= 90 at the end of the last update
     std::size_t live = 0;
 
+    /// Samples whose Add was refused during the current update (far from the mesh, on a
+    /// vertex, folding the mesh or making it intersect itself): RefineVert does not promote
+    /// them again until the next update, so a refusal costs one try, not one per pass.
+    std::vector<char> refused;
     /// size_factor * lfs of each slot, graded (+inf: no bound; NaN: not yet known, a sample
     /// inserted after t = 0 until it is placed). Empty when the size field is off.
     std::vector<double> size;
@@ -175,6 +180,7 @@ struct DeformingMesh::Impl {
         return slot;
     }
     void grow(std::size_t n) {
+        refused.resize(n, 0);
         size.resize(n, std::numeric_limits<double>::quiet_NaN());
         pos.resize(n);
         state.resize(n, State::Dead);
@@ -267,6 +273,7 @@ struct DeformingMesh::Impl {
                                               [&](std::uint32_t s) { return state[s] == State::Vertex; });
             violation(Violation::FarSample, idstr(p) + " is " + std::to_string(d) +
                                                 " from the mesh (R = " + std::to_string(R) + "); kept dormant");
+            refused[p] = 1;
             attach(p, w);
             return;
         }
@@ -278,14 +285,19 @@ struct DeformingMesh::Impl {
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex) {
             violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)));
+            refused[p] = 1;
             attach(p, sid(r.near_vertex));
             return;
         }
         ++cur.insertions;
         make_vertex(p, r.vertex);
-        if (star_folded(r.vertex, old_normal)) {
-            // Sparse samples only (the theory rules it out): take the vertex out again.
-            violation(Violation::AddFolded, idstr(p) + " would fold the mesh; kept dormant");
+        const bool folded = star_folded(r.vertex, old_normal);
+        if (folded || star_intersects(r.vertex, grid, R)) {
+            // Sparse samples or thin parts only (the theory rules it out): take the vertex out
+            // again.
+            violation(Violation::AddFolded, idstr(p) + (folded ? " would fold the mesh" : " would make the mesh intersect itself") +
+                                                "; kept dormant");
+            refused[p] = 1;
             if (remove_sample(p, nullptr)) {
                 const auto [w, dw] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                                   [&](std::uint32_t s) { return state[s] == State::Vertex; });
@@ -294,6 +306,20 @@ struct DeformingMesh::Impl {
             }
         }
         grid.insert(p, P(p));
+    }
+
+    /// star_intersects() with the candidates of `grid` (ids are samples): faces meeting v's
+    /// star have their vertices within the star's longest edge plus 2 R of v.
+    [[nodiscard]] bool star_intersects(Vertex v, const PointGrid& grid, double R) const {
+        double longest = 0;
+        for (Halfedge h : mesh.outgoing_halfedges(v)) {
+            longest = std::max(longest, distance(mesh.position(v), mesh.position(mesh.to_vertex(h))));
+            if (!mesh.is_boundary(h))
+                longest = std::max(longest, distance(mesh.position(mesh.to_vertex(h)),
+                                                     mesh.position(mesh.to_vertex(mesh.next(h)))));
+        }
+        return detail::star_intersects(mesh, v, grid, longest + 2 * R,
+                                       [&](std::uint32_t s) { return state[s] == State::Vertex ? vert_of[s] : Vertex(); });
     }
 
     /// True when a triangle around v turns by 90 degrees or more against `reference` or
@@ -438,7 +464,7 @@ struct DeformingMesh::Impl {
             std::vector<SampleId> S;
             bool local = false;  // a sample was promoted by its local size below R
             for (SampleId p = 0; p < state.size(); ++p) {
-                if (state[p] != State::Dormant) continue;
+                if (state[p] != State::Dormant || refused[p]) continue;
                 ++cur.distance_evals;
                 if (distance(P(p), P(owner[p])) > rs(p, R) / 3) {
                     if (!(rs(p, R) >= R)) local = true;
@@ -667,6 +693,16 @@ struct DeformingMesh::Impl {
         }
     }
 
+    /// One unit of advance() after its checks: the sub-steps (at least min_n) and the
+    /// monitors.
+    StepReport frame(int t, std::span<const Point3> positions, std::size_t min_n);
+    /// A deep copy (the sample property handle re-bound to the copy's mesh).
+    [[nodiscard]] std::unique_ptr<Impl> copy() const {
+        auto c = std::make_unique<Impl>(*this);
+        c->vsample = c->mesh.get_vertex_property<SampleId>("v:sample");
+        return c;
+    }
+
     // ---- sub-stepping (spec §10.1) -----------------------------------------------------------
     /// Relative displacement since the last update: of each edge's ends (by edge index; the
     /// connectivity does not change between updates) and of each dormant sample and its owner
@@ -726,7 +762,7 @@ struct DeformingMesh::Impl {
     /// f = k / n, G(f) the turn by f phi about a and res_s = to_s - c1 - G(1)(from_s - c0)
     /// (from_s + f (to_s - from_s) when phi = 0); sub-step n at to exactly. Before a sub-step
     /// that would take some pair's strain beyond the budget, an internal update runs.
-    void substep_to(const std::vector<Point3>& to, StepReport& rep) {
+    void substep_to(const std::vector<Point3>& to, StepReport& rep, std::size_t min_n) {
         if (params.max_substeps <= 1 || !(budget() > 0) || !std::isfinite(budget())) {
             move_samples(to, false);
             return;
@@ -743,6 +779,7 @@ struct DeformingMesh::Impl {
         } else if (need > 1) {
             n = static_cast<std::size_t>(need);
         }
+        n = std::min(std::max(n, min_n), params.max_substeps);
         rep.substeps = n;
         std::vector<Point3> at(pos.size());
         const detail::Mat3 full = fit.rotation(), step = fit.rotation(1.0 / static_cast<double>(n));
@@ -781,6 +818,7 @@ struct DeformingMesh::Impl {
         rep.t = t;
         rep.emergency = !internal && emergency_requested;
         cur = {};
+        std::fill(refused.begin(), refused.end(), 0);
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
         const bool broken = !internal && folded_now > folded_at_step;
@@ -1223,18 +1261,40 @@ const InitReport& DeformingMesh::init_report() const { return impl_->init; }
 // ---- time ----------------------------------------------------------------------------------
 
 StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
-    Impl& I = *impl_;
+    {
+        const Impl& I = *impl_;
+        if (t <= I.t)
+            throw InvalidInput("deform: advance(t = " + std::to_string(t) + ") after time " + std::to_string(I.t) +
+                               ": time must increase");
+        if (positions.size() < I.pos.size())
+            throw InvalidInput("deform: the position table has " + std::to_string(positions.size()) +
+                               " entries but sample ids go up to " + std::to_string(I.pos.size() - 1));
+        for (SampleId id = 0; id < I.pos.size(); ++id)
+            if (I.state[I.slot_of[id]] != State::Dead && !is_finite(positions[id]))
+                throw InvalidInput("deform: sample " + std::to_string(id) + " has a non-finite position at t = " +
+                                   std::to_string(t));
+    }
+    // Spec §10.4: a unit that ends with a new fold or (with intersection_checks) intersecting
+    // itself is redone from its start with twice the sub-steps, up to max_retries times.
+    const bool retry = impl_->params.max_substeps > 1 && impl_->params.max_retries > 0;
+    std::unique_ptr<Impl> start = retry ? impl_->copy() : nullptr;
+    std::size_t min_n = 1;
+    for (std::size_t attempt = 0;; ++attempt) {
+        StepReport rep = impl_->frame(t, positions, min_n);
+        rep.retries = attempt;
+        // Folds and intersections, not normals against those of the last update, which a
+        // rigid turn by more than 90 degrees since then inverts too.
+        const bool bad = rep.new_folds > 0 || rep.self_intersecting;
+        if (!bad || !start || attempt >= impl_->params.max_retries || rep.substeps >= impl_->params.max_substeps)
+            return rep;
+        min_n = 2 * rep.substeps;
+        impl_ = start->copy();
+    }
+}
+
+StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, std::size_t min_n) {
+    Impl& I = *this;
     I.pending_violations.clear();
-    if (t <= I.t)
-        throw InvalidInput("deform: advance(t = " + std::to_string(t) + ") after time " + std::to_string(I.t) +
-                           ": time must increase");
-    if (positions.size() < I.pos.size())
-        throw InvalidInput("deform: the position table has " + std::to_string(positions.size()) +
-                           " entries but sample ids go up to " + std::to_string(I.pos.size() - 1));
-    for (SampleId id = 0; id < I.pos.size(); ++id)
-        if (I.state[I.slot_of[id]] != State::Dead && !is_finite(positions[id]))
-            throw InvalidInput("deform: sample " + std::to_string(id) + " has a non-finite position at t = " +
-                               std::to_string(t));
     StepReport rep;
     rep.t = t;
     const int dt = t - I.t;
@@ -1255,7 +1315,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
             worst = s;
         }
     }
-    I.substep_to(to, rep);
+    I.substep_to(to, rep, min_n);
     I.touch();
     rep.max_displacement = maxd;
     bool trip = false;
@@ -1291,6 +1351,9 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
                                                      std::to_string(I.folded_at_step) + " at the last step)");
         trip = true;
     }
+    rep.inverted_triangles = inverted;
+    rep.new_folds = folded > I.folded_at_step ? folded - I.folded_at_step : 0;
+    if (I.params.intersection_checks) rep.self_intersecting = has_self_intersections(I.mesh);
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;
     rep.update_due = t >= I.next || rep.emergency;

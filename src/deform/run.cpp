@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/metrics/self_intersection.hpp"
 
 namespace dynmesh {
 
@@ -137,8 +139,33 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             rep.worst_min_edge_angle_deg = std::min(rep.worst_min_edge_angle_deg, f.min_edge_angle_deg);
             rep.self_intersections += f.self_intersections;
             rep.inverted += f.inverted;
-            if (f.self_intersections > 0 && rep.first_self_intersection_t < 0) rep.first_self_intersection_t = t;
-            if (f.inverted > 0 && rep.first_inverted_t < 0) rep.first_inverted_t = t;
+            // The place of the first of each, as sample ids.
+            auto face_str = [&](Face x) {
+                std::string out = "(";
+                for (const Vertex u : m.face_vertices(x)) {
+                    if (out.size() > 1) out += ", ";
+                    out += std::to_string(dm.sample_of(u));
+                }
+                return out + ")";
+            };
+            if (f.self_intersections > 0 && rep.first_self_intersection_t < 0) {
+                rep.first_self_intersection_t = t;
+                const auto pairs = self_intersections(m, 1);
+                if (!pairs.empty())
+                    rep.first_self_intersection = "triangles " + face_str(pairs[0].first) + " and " + face_str(pairs[0].second);
+            }
+            if (f.inverted > 0 && rep.first_inverted_t < 0) {
+                rep.first_inverted_t = t;
+                for (Face x : m.faces()) {
+                    const auto v = m.face_vertices(x);
+                    Vec3 truth_n{};
+                    for (Vertex u : v) truth_n += truth.normal(vertex_pool[u.idx()]);
+                    if (dot(triangle_normal(m.position(v[0]), m.position(v[1]), m.position(v[2])), truth_n) < 0) {
+                        rep.first_inverted = "triangle " + face_str(x);
+                        break;
+                    }
+                }
+            }
         }
         row.metrics.t = t;
         rep.log.push_back(row);
@@ -181,6 +208,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
         rep.substeps += st.substeps;
         rep.max_substeps_per_unit = std::max(rep.max_substeps_per_unit, st.substeps);
         rep.internal_updates += st.internal_updates;
+        rep.substep_retries += st.retries;
         rep.max_strain_ratio = std::max(rep.max_strain_ratio, st.max_strain_ratio);
         bool emergency = false;
         if (due) {
@@ -275,10 +303,12 @@ CheckReport check_failures(const DeformRunReport& r, CheckLevel level) {
         for (const std::string& f : r.first_nonempty_balls) out.push_back(f);
     }
     if (r.self_intersections > 0)
-        out.push_back("t=" + std::to_string(r.first_self_intersection_t) + ": self-intersections (" +
+        out.push_back("t=" + std::to_string(r.first_self_intersection_t) + ": self-intersections" +
+                      (r.first_self_intersection.empty() ? "" : ", first " + r.first_self_intersection) + " (" +
                       std::to_string(r.self_intersections) + " intersecting triangle pairs over the measured time units)");
     if (r.inverted > 0)
-        out.push_back("t=" + std::to_string(r.first_inverted_t) + ": inverted triangles (" + std::to_string(r.inverted) +
+        out.push_back("t=" + std::to_string(r.first_inverted_t) + ": inverted triangles" +
+                      (r.first_inverted.empty() ? "" : ", first " + r.first_inverted) + " (" + std::to_string(r.inverted) +
                       " over the measured time units)");
     // Records of one kind: the examples the report keeps, then a count of the rest.
     auto records = [&](auto&& wanted) {

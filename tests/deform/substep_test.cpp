@@ -175,5 +175,36 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
     EXPECT_TRUE(inv.ok()) << inv.summary();
 }
 
+
+TEST(Substep, AVertexSentThroughTheOppositeWallIsDetected) {
+    // F7a: one sample's input position jumps through the sphere and out of the far side in
+    // one unit. No sub-stepping can keep that embedded: the unit needs more sub-steps than
+    // the cap (no retry can double them), and it ends reporting the intersection.
+    const auto P0 = sphere_samples(2000, 11);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformOptions o;
+    o.lambda = 1e-3;
+    o.h0 = 0.12;
+    o.max_substeps = 64;
+    DeformingMesh dm(P0, o, {.surface = &sphere});
+    SampleId id = kNoSample;
+    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    auto pos = P0;
+    pos[id] = P0[id] * -1.2;
+    const StepReport st = dm.advance(1, pos);
+    EXPECT_TRUE(st.self_intersecting);
+    EXPECT_EQ(st.substeps, o.max_substeps);
+    EXPECT_EQ(st.retries, 0u);
+    EXPECT_TRUE(std::any_of(st.violations.begin(), st.violations.end(),
+                            [](const ViolationRecord& v) { return v.kind == Violation::SubstepCapHit; }));
+    EXPECT_GT(count_self_intersections(dm.mesh()), 0u);
+    // The same unit without the end-of-unit check passes silently at this level (the run
+    // driver and --check measure it again).
+    o.intersection_checks = false;
+    DeformingMesh quiet(P0, o, {.surface = &sphere});
+    const StepReport sq = quiet.advance(1, pos);
+    EXPECT_FALSE(sq.self_intersecting);
+}
+
 }  // namespace
 }  // namespace dynmesh

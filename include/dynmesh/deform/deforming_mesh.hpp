@@ -126,6 +126,13 @@ struct DeformOptions {
     /// instead of 166), which is why it is off; creases detected once on the input and
     /// carried as polylines (spec §10.3) are not implemented.
     double feature_angle_deg = 180.0;
+    /// Spec §10.4 (with sub-stepping): a unit that ends with a new fold (an edge-angle <= 90
+    /// degrees) or (with intersection_checks) a self-intersection is redone from its start
+    /// with twice the sub-steps, at most this many times (0: never).
+    std::size_t max_retries = 3;
+    /// Test the whole mesh for self-intersections at the end of every unit (CGAL's
+    /// self_intersections: O(F log F), about an update's cost) and retry as above.
+    bool intersection_checks = true;
 };
 
 /// What the library knows about Sigma(0) besides the samples (all optional). Tri(0) comes
@@ -162,7 +169,7 @@ enum class Violation {
     DeletionCapHit,             ///< Deletion hit deletion_max_iters
     AddVertexCase,              ///< Add found the sample on an existing vertex (kept dormant)
     FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
-    AddFolded,                  ///< Add would fold the mesh (sparse samples); undone, kept dormant
+    AddFolded,  ///< Add would fold the mesh or make it intersect itself; undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation
     /// A diametric ball holds a vertex once an update's (or the initialisation's) global flips
     /// are done (DeformOptions::verify_balls), or a flip loop stopped at its cap.
@@ -234,6 +241,15 @@ struct StepReport {
     /// sub-step of the unit: <= 1 unless an update's new edges move faster than the budget
     /// allows in one sub-step.
     double max_strain_ratio = 0;
+    /// The unit's end state (spec §10.4): triangles whose normal turned by 90 degrees or more
+    /// since the last update, edges newly folded to an edge-angle <= 90 degrees, and (with
+    /// DeformOptions::intersection_checks) whether the mesh intersects itself.
+    std::size_t inverted_triangles = 0, new_folds = 0;
+    bool self_intersecting = false;
+    /// Times the unit was redone from its start with twice the sub-steps because its end
+    /// state had a new fold or a self-intersection (DeformOptions::max_retries); the report
+    /// is the last try's.
+    std::size_t retries = 0;
     std::vector<ViolationRecord> violations;
 };
 

@@ -84,6 +84,8 @@ struct DeformRunReport {
     /// one unit, the updates run between sub-steps (not in `updates`) and the largest strain
     /// ratio (StepReport::max_strain_ratio) of any unit.
     std::size_t substeps = 0, max_substeps_per_unit = 0, internal_updates = 0;
+    /// Units redone with twice the sub-steps (StepReport::retries, summed).
+    std::size_t substep_retries = 0;
     double max_strain_ratio = 0;
     std::size_t flips = 0, insertions = 0, removals = 0;
     std::size_t samples_inserted = 0, samples_deleted = 0;
@@ -118,6 +120,10 @@ struct DeformRunReport {
     std::size_t flip_refusals = 0;  ///< flips refused by the circumradius guard (spec §9 P9)
     /// First time unit with a self-intersection / an inverted triangle (-1: none).
     int first_self_intersection_t = -1, first_inverted_t = -1;
+    /// Where: "triangles (a, b, c) and (d, e, f)" / "triangle (a, b, c)" (sample ids; an
+    /// inverted triangle's normal points against the sum of the true normals at its
+    /// vertices). Empty when there is none.
+    std::string first_self_intersection, first_inverted;
     /// Tri(0): vertices and Euler characteristic (kept by every update).
     std::size_t init_vertices = 0;
     long long euler = 0;

@@ -1,0 +1,60 @@
+#include "star_intersection.hpp"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+
+namespace dynmesh::detail {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+K::Point_3 cg(const Point3& p) { return {p.x, p.y, p.z}; }
+
+bool faces_meet(const SurfaceMesh& m, Face f, Face g) {
+    const auto a = m.face_vertices(f), b = m.face_vertices(g);
+    int shared = 0, ia = -1, ib = -1;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (a[i] == b[j]) {
+                ++shared;
+                ia = i;
+                ib = j;
+            }
+    if (shared >= 2) return false;  // neighbours across an edge (a fold is not this test's)
+    const K::Triangle_3 ta(cg(m.position(a[0])), cg(m.position(a[1])), cg(m.position(a[2])));
+    const K::Triangle_3 tb(cg(m.position(b[0])), cg(m.position(b[1])), cg(m.position(b[2])));
+    if (shared == 0) return CGAL::do_intersect(ta, tb);
+    const K::Segment_3 ea(cg(m.position(a[(ia + 1) % 3])), cg(m.position(a[(ia + 2) % 3])));
+    const K::Segment_3 eb(cg(m.position(b[(ib + 1) % 3])), cg(m.position(b[(ib + 2) % 3])));
+    return CGAL::do_intersect(ea, tb) || CGAL::do_intersect(eb, ta);
+}
+
+}  // namespace
+
+bool star_intersects(const SurfaceMesh& m, Vertex v, const PointGrid& grid, double radius,
+                     const std::function<Vertex(std::uint32_t)>& vertex_of) {
+    std::vector<Face> star;
+    for (Halfedge h : m.outgoing_halfedges(v))
+        if (const Face f = m.face(h); f.is_valid()) star.push_back(f);
+    std::vector<Face> near;
+    grid.for_each_candidate(m.position(v), radius, [&](std::uint32_t id) {
+        const Vertex w = vertex_of(id);
+        if (!w.is_valid() || w.idx() >= m.vertices_size() || m.is_deleted(w) || w == v) return;
+        for (Halfedge h : m.outgoing_halfedges(w))
+            if (const Face f = m.face(h); f.is_valid()) near.push_back(f);
+    });
+    std::sort(near.begin(), near.end(), [](Face x, Face y) { return x.idx() < y.idx(); });
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (Face g : near) {
+        if (std::find(star.begin(), star.end(), g) != star.end()) continue;
+        for (Face f : star)
+            if (faces_meet(m, f, g)) return true;
+    }
+    return false;
+}
+
+}  // namespace dynmesh::detail
