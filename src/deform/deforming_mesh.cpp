@@ -143,15 +143,19 @@ struct DeformingMesh::Impl {
     /// them again until the next update, so a refusal costs one try, not one per pass.
     std::vector<char> refused;
     /// size_factor * lfs of each slot, graded (+inf: no bound; NaN: not yet known, a sample
-    /// inserted after t = 0 until it is placed). Empty when the size field is off.
+    /// inserted after t = 0 until it is placed). Read only when size_on.
     std::vector<double> size;
+    bool size_on = false;  ///< a size field was set up at t = 0
+    /// The mesh intersected itself at the end of the last unit (intersection_checks): a
+    /// unit that starts so is not retried for it.
+    bool intersecting = false;
     /// The local size of a sample against the pass-level R: min(R, size) (R when off).
     [[nodiscard]] double rs(SampleId s, double R) const {
-        return size.empty() || !(size[s] < R) ? R : size[s];
+        return !size_on || !(size[s] < R) ? R : size[s];
     }
     /// Gives a sample inserted after t = 0 its size from its nearest vertex w at distance d.
     void inherit_size(SampleId p, SampleId w, double d) {
-        if (!size.empty() && std::isnan(size[p]))
+        if (size_on && std::isnan(size[p]))
             size[p] = w == kNoSample ? std::numeric_limits<double>::infinity() : size[w] + params.grading * d;
     }
 
@@ -672,6 +676,7 @@ struct DeformingMesh::Impl {
                 continue;
             }
             ++removed;
+            std::fill(refused.begin(), refused.end(), 0);  // the mesh changed around the refusals
             moving.push_back(u);
             for (SampleId p : moving) {
                 const auto [w, d] = white.nearest(P(p), posf, [](std::uint32_t) { return true; });
@@ -730,9 +735,12 @@ struct DeformingMesh::Impl {
     }
     /// How far a and b move relative to each other when every sample goes from pos to `to`,
     /// apart from the rotation `turn` of the whole (a rigid motion moves no pair).
+    /// The smaller of the plain relative displacement (spec §10.1's D, which the paper's
+    /// model bounds by 2 lambda per unit) and the one measured after the turn.
     [[nodiscard]] double relative_move(const std::vector<Point3>& to, SampleId a, SampleId b,
                                        const detail::Mat3& turn) const {
-        return norm((to[b] - to[a]) - turn * (pos[b] - pos[a]));
+        const Vec3 e0 = pos[b] - pos[a], e1 = to[b] - to[a];
+        return std::min(norm(e1 - e0), norm(e1 - turn * e0));
     }
     /// Largest (strain + relative move) / budget over the pairs when every sample goes from
     /// pos to `to` (the move alone, when !with_strain).
@@ -939,6 +947,7 @@ struct DeformingMesh::Impl {
         std::vector<SampleId> vsamples;
         for (std::uint32_t i : af.report.vertex_sample) vsamples.push_back(vs[i]);
         install_mesh(std::move(af.mesh), vsamples);
+        std::fill(refused.begin(), refused.end(), 0);  // another mesh: refusals may not stand
         global_flip();
         canonicalize();
         ++cur.rebuilds;
@@ -979,7 +988,8 @@ struct DeformingMesh::Impl {
             return;
         }
         size.assign(pos.size(), inf);
-        for (std::size_t i = 0; i < by_id.size(); ++i) size[slot_of[i]] = by_id[i];
+        for (std::size_t i = 0; i < by_id.size(); ++i) size[slot_of[i]] = std::max(by_id[i], 1e-300);
+        size_on = true;
     }
 
     /// Step 1 of §4.1: h0 given, or estimated from the surface, the reference, the initial
@@ -1278,13 +1288,21 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     // itself is redone from its start with twice the sub-steps, up to max_retries times.
     const bool retry = impl_->params.max_substeps > 1 && impl_->params.max_retries > 0;
     std::unique_ptr<Impl> start = retry ? impl_->copy() : nullptr;
+    const bool was_intersecting = impl_->intersecting;
     std::size_t min_n = 1;
     for (std::size_t attempt = 0;; ++attempt) {
-        StepReport rep = impl_->frame(t, positions, min_n);
+        StepReport rep;
+        try {
+            rep = impl_->frame(t, positions, min_n);
+        } catch (...) {
+            if (start) impl_ = std::move(start);  // the state before the unit
+            throw;
+        }
         rep.retries = attempt;
-        // Folds and intersections, not normals against those of the last update, which a
-        // rigid turn by more than 90 degrees since then inverts too.
-        const bool bad = rep.new_folds > 0 || rep.self_intersecting;
+        impl_->intersecting = rep.self_intersecting;
+        // New folds and new intersections, not normals against those of the last update,
+        // which a rigid turn by more than 90 degrees since then inverts too.
+        const bool bad = rep.new_folds > 0 || (rep.self_intersecting && !was_intersecting);
         if (!bad || !start || attempt >= impl_->params.max_retries || rep.substeps >= impl_->params.max_substeps)
             return rep;
         min_n = 2 * rep.substeps;
@@ -1476,7 +1494,7 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
         fail("dormant lists hold " + std::to_string(in_lists) + " samples but " + std::to_string(dormant) +
              " samples are dormant");
     // triangle shape (a graded size allows 3 (1 + 2 L), spec §10.2)
-    const double re_bound = options.radius_edge_bound * (I.size.empty() ? 1.0 : 1.0 + 2.0 * I.params.grading);
+    const double re_bound = options.radius_edge_bound * (I.size_on ? 1.0 + 2.0 * I.params.grading : 1.0);
     for (Face f : I.mesh.faces()) {
         const auto vs = I.mesh.face_vertices(f);
         const double re = radius_edge_ratio(I.mesh.position(vs[0]), I.mesh.position(vs[1]), I.mesh.position(vs[2]));
