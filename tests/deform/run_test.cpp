@@ -51,6 +51,25 @@ void expect_good(const DeformRunReport& r) {
     }
 }
 
+TEST(DeformRun, SubSteppingLeavesARunWithinTheModelUnchanged) {
+    // Spec §10.6 F1: when the motion meets the paper's model (floor(R / (kappa lambda)) >= 1,
+    // no monitor), sub-stepping never fires and the run is the paper's, change for change.
+    for (const char* name : {"stretch", "dimple"}) {
+        const auto paper = run(name, 1000, 100, 0.05, Schedule::Paper, 0, kPracticalKappa, 1);
+        ASSERT_EQ(paper.violations.count("step_too_short"), 0u) << name << ": not within the model";
+        ASSERT_GT(paper.updates, 2u) << name;
+        const auto cut = run(name, 1000, 100, 0.05, Schedule::Paper, 0);
+        EXPECT_EQ(cut.substeps, static_cast<std::size_t>(cut.time_units)) << name;
+        EXPECT_EQ(cut.internal_updates, 0u) << name;
+        EXPECT_EQ(cut.substep_retries, 0u) << name;
+        EXPECT_EQ(cut.updates, paper.updates) << name;
+        EXPECT_EQ(cut.flips, paper.flips) << name;
+        EXPECT_EQ(cut.insertions, paper.insertions) << name;
+        EXPECT_EQ(cut.removals, paper.removals) << name;
+        EXPECT_EQ(cut.violations, paper.violations) << name;
+    }
+}
+
 TEST(DeformRun, StretchKeepsQualityAtEveryTimeUnit) {
     const auto r = run("stretch", 1500, 100, 0.5);
     expect_good(r);
