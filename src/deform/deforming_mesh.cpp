@@ -229,9 +229,19 @@ struct DeformingMesh::Impl {
     mutable double R_cache = 0;
     mutable bool R_valid = false;
 
-    /// Grid of the current vertices (ids = sample ids).
+    /// `cell`, or when it is not positive and finite (R of a mesh with a degenerate triangle
+    /// is infinite) the bounding-box diagonal of the vertices over the cube root of their
+    /// count.
+    [[nodiscard]] double grid_cell(double cell) const {
+        if (std::isfinite(cell) && cell > 0) return cell;
+        Bbox3 box;
+        for (Vertex v : mesh.vertices()) box.extend(mesh.position(v));
+        const double n = static_cast<double>(std::max<std::size_t>(1, mesh.n_vertices()));
+        return std::max(box.diagonal() / std::cbrt(n), 1e-300);
+    }
+    /// Grid of the current vertices (ids = sample ids), cell grid_cell(cell).
     PointGrid vertex_grid(double cell) const {
-        PointGrid g(cell);
+        PointGrid g(grid_cell(cell));
         for (Vertex v : mesh.vertices()) g.insert(sid(v), mesh.position(v));
         return g;
     }
@@ -660,7 +670,7 @@ struct DeformingMesh::Impl {
                 if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
             });
         }
-        PointGrid white(R);
+        PointGrid white(grid_cell(R));
         std::vector<SampleId> blacks;
         for (SampleId v : vs) (black[v] ? blacks.push_back(v) : white.insert(v, P(v)));
         if (blacks.empty()) return 0;
