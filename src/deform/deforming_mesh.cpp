@@ -708,9 +708,9 @@ struct DeformingMesh::Impl {
         }
     }
 
-    /// One unit of advance() after its checks: the sub-steps (at least min_n) and the
-    /// monitors.
-    StepReport frame(int t, std::span<const Point3> positions, std::size_t min_n);
+    /// One unit of advance() after its checks: the sub-steps (at least min_n) and the With `save`, the state before the unit is copied there when the unit is
+    /// cut into sub-steps.
+    StepReport frame(int t, std::span<const Point3> positions, std::size_t min_n, std::unique_ptr<Impl>* save);
     /// A deep copy (the sample property handle re-bound to the copy's mesh).
     [[nodiscard]] std::unique_ptr<Impl> copy() const {
         auto c = std::make_unique<Impl>(*this);
@@ -780,7 +780,8 @@ struct DeformingMesh::Impl {
     /// f = k / n, G(f) the turn by f phi about a and res_s = to_s - c1 - G(1)(from_s - c0)
     /// (from_s + f (to_s - from_s) when phi = 0); sub-step n at to exactly. Before a sub-step
     /// that would take some pair's strain beyond the budget, an internal update runs.
-    void substep_to(const std::vector<Point3>& to, StepReport& rep, std::size_t min_n) {
+    void substep_to(const std::vector<Point3>& to, StepReport& rep, std::size_t min_n, std::unique_ptr<Impl>* save,
+                    int t_before) {
         if (params.max_substeps <= 1 || !(budget() > 0) || !std::isfinite(budget())) {
             move_samples(to, false);
             return;
@@ -789,15 +790,16 @@ struct DeformingMesh::Impl {
         const detail::RigidFit fit =
             detail::fit_rigid(from, to, [&](std::size_t s) { return state[s] != State::Dead; });
         const double need = std::ceil(strain_ratio(to, fit.rotation(), false));
-        std::size_t n = 1;
-        if (need > static_cast<double>(params.max_substeps)) {
-            n = params.max_substeps;
+        std::size_t n = std::max<std::size_t>(1, min_n);
+        if (need > 1) n = std::max(n, static_cast<std::size_t>(std::min(need, static_cast<double>(params.max_substeps))));
+        n = std::min(n, params.max_substeps);
+        if (save != nullptr && n > 1) {  // the state before the unit, for a retry
+            *save = copy();
+            (*save)->t = t_before;
+        }
+        if (need > static_cast<double>(params.max_substeps))
             violation(Violation::SubstepCapHit, "the unit needs " + std::to_string(need) + " sub-steps; " +
                                                     std::to_string(n) + " used (max_substeps)");
-        } else if (need > 1) {
-            n = static_cast<std::size_t>(need);
-        }
-        n = std::min(std::max(n, min_n), params.max_substeps);
         rep.substeps = n;
         std::vector<Point3> at(pos.size());
         const detail::Mat3 full = fit.rotation(), step = fit.rotation(1.0 / static_cast<double>(n));
@@ -1297,13 +1299,15 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     // Spec §10.4: a unit that ends with a new fold or (with intersection_checks) intersecting
     // itself is redone from its start with twice the sub-steps, up to max_retries times.
     const bool retry = impl_->params.max_substeps > 1 && impl_->params.max_retries > 0;
-    std::unique_ptr<Impl> start = retry ? impl_->copy() : nullptr;
+    // The state before the unit, taken by the first try once it cuts the unit into sub-steps
+    // (a unit moved at once, the paper's case, costs no copy).
+    std::unique_ptr<Impl> start;
     const bool was_intersecting = impl_->intersecting;
     std::size_t min_n = 1;
     for (std::size_t attempt = 0;; ++attempt) {
         StepReport rep;
         try {
-            rep = impl_->frame(t, positions, min_n);
+            rep = impl_->frame(t, positions, min_n, retry && !start ? &start : nullptr);
         } catch (...) {
             if (start) impl_ = std::move(start);  // the state before the unit
             throw;
@@ -1320,7 +1324,8 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
     }
 }
 
-StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, std::size_t min_n) {
+StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, std::size_t min_n,
+                                      std::unique_ptr<Impl>* save) {
     Impl& I = *this;
     I.pending_violations.clear();
     StepReport rep;
@@ -1343,7 +1348,7 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
             worst = s;
         }
     }
-    I.substep_to(to, rep, min_n);
+    I.substep_to(to, rep, min_n, save, t - dt);
     I.touch();
     rep.max_displacement = maxd;
     bool trip = false;
@@ -1381,7 +1386,11 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
     }
     rep.inverted_triangles = inverted;
     rep.new_folds = folded > I.folded_at_step ? folded - I.folded_at_step : 0;
-    if (I.params.intersection_checks) rep.self_intersecting = has_self_intersections(I.mesh);
+    // Only a cut unit is tested: one moved at once within the budget (the paper's case)
+    // keeps the state it had.
+    rep.self_intersecting = I.intersecting;
+    if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0))
+        rep.self_intersecting = has_self_intersections(I.mesh);
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;
     rep.update_due = t >= I.next || rep.emergency;
