@@ -717,6 +717,12 @@ struct DeformingMesh::Impl {
         c->vsample = c->mesh.get_vertex_property<SampleId>("v:sample");
         return c;
     }
+    /// Becomes a copy of `saved` in place, so that references to this state (mesh(),
+    /// init_report()) stay valid across a retry.
+    void restore(const Impl& saved) {
+        *this = saved;
+        vsample = mesh.get_vertex_property<SampleId>("v:sample");
+    }
 
     // ---- sub-stepping (spec §10.1) -----------------------------------------------------------
     /// Relative displacement since the last update: of each edge's ends (by edge index; the
@@ -1309,7 +1315,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
         try {
             rep = impl_->frame(t, positions, min_n, retry && !start ? &start : nullptr);
         } catch (...) {
-            if (start) impl_ = std::move(start);  // the state before the unit
+            if (start) impl_->restore(*start);  // the state before the unit
             throw;
         }
         rep.retries = attempt;
@@ -1320,7 +1326,7 @@ StepReport DeformingMesh::advance(int t, std::span<const Point3> positions) {
         if (!bad || !start || attempt >= impl_->params.max_retries || rep.substeps >= impl_->params.max_substeps)
             return rep;
         min_n = 2 * rep.substeps;
-        impl_ = start->copy();
+        impl_->restore(*start);
     }
 }
 

@@ -161,8 +161,10 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
     // Along the great circle (a chord would leave the sphere at the midpoint).
     const Point3 target = normalized(2.0 * P0[w] - P0[id]);
     pos[id] = target;
+    const SurfaceMesh* before = &dm.mesh();
     const StepReport st = dm.advance(1, pos);
     EXPECT_GT(st.substeps, 1u);
+    EXPECT_EQ(&dm.mesh(), before) << "a retry (" << st.retries << " here) must keep references valid";
     for (const auto& x : st.violations) {
         EXPECT_NE(x.kind, Violation::NormalInverted) << x.detail;
         EXPECT_NE(x.kind, Violation::EdgeAngleBelow90) << x.detail;
