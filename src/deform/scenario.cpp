@@ -15,6 +15,7 @@
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/io/mesh_io.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/normals.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
 #include "dynmesh/shapes/analytic.hpp"
 #include "scenario_common.hpp"
@@ -57,21 +58,6 @@ std::string joined(const std::vector<std::string>& v, const char* sep = ", ") {
     std::string s;
     for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
     return s;
-}
-
-/// Angle-weighted vertex normals of a closed mesh (no deleted elements).
-std::vector<Vec3> vertex_normals(const SurfaceMesh& mesh) {
-    std::vector<Vec3> n(mesh.vertices_size(), Vec3{});
-    for (const Face f : mesh.faces()) {
-        const auto v = mesh.face_vertices(f);
-        const Point3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
-        const Vec3 fn = triangle_normal(a, b, c);
-        n[v[0].idx()] += fn * angle_at(c, a, b);
-        n[v[1].idx()] += fn * angle_at(a, b, c);
-        n[v[2].idx()] += fn * angle_at(b, c, a);
-    }
-    for (Vec3& x : n) x = normalized(x);
-    return n;
 }
 
 /// Drops the vertices no face uses (keeping the others' order).

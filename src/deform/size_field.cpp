@@ -15,6 +15,7 @@
 
 #include "dynmesh/error.hpp"
 #include "dynmesh/geometry/triangle.hpp"
+#include "dynmesh/mesh/normals.hpp"
 
 namespace dynmesh {
 namespace {
@@ -25,25 +26,6 @@ using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 K::Point_3 to_cgal(const Point3& p) { return {p.x, p.y, p.z}; }
-
-/// Angle-weighted unit normal of every vertex (zero for an isolated vertex).
-std::vector<Vec3> vertex_normals(const SurfaceMesh& m) {
-    std::vector<Vec3> n(m.vertices_size(), Vec3{});
-    for (Face f : m.faces()) {
-        const auto v = m.face_vertices(f);
-        const Point3 p[3] = {m.position(v[0]), m.position(v[1]), m.position(v[2])};
-        const Vec3 nf = triangle_normal(p[0], p[1], p[2]);
-        for (int i = 0; i < 3; ++i) {
-            const Vec3 a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
-            n[v[i].idx()] += nf * angle_between(a, b);
-        }
-    }
-    for (Vec3& x : n) {
-        const double l = norm(x);
-        if (l > 0) x = x / l;
-    }
-    return n;
-}
 
 }  // namespace
 

@@ -50,6 +50,13 @@ std::vector<Point3> twisted(const std::vector<Point3>& p0, double a) {
     return out;
 }
 
+/// The sample of the mesh vertex with the smallest sample id.
+SampleId smallest_vertex_sample(const DeformingMesh& dm) {
+    SampleId id = kNoSample;
+    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    return id;
+}
+
 DeformOptions options(double h0) {
     DeformOptions o;
     o.lambda = 1e-9;  // the schedule never calls: only the budget decides
@@ -153,8 +160,7 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
     o.lambda = 1e-3;
     o.h0 = 0.09;
     DeformingMesh dm(P0, o, {.surface = &sphere});
-    SampleId id = kNoSample;
-    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    const SampleId id = smallest_vertex_sample(dm);
     const Vertex v = dm.vertex_of(id);
     const SampleId w = dm.sample_of(dm.mesh().to_vertex(*dm.mesh().outgoing_halfedges(v).begin()));
     auto pos = P0;
@@ -189,8 +195,7 @@ TEST(Substep, AVertexSentThroughTheOppositeWallIsDetected) {
     o.h0 = 0.12;
     o.max_substeps = 64;
     DeformingMesh dm(P0, o, {.surface = &sphere});
-    SampleId id = kNoSample;
-    for (Vertex v : dm.mesh().vertices()) id = std::min(id, dm.sample_of(v));
+    const SampleId id = smallest_vertex_sample(dm);
     auto pos = P0;
     pos[id] = P0[id] * -1.2;
     const StepReport st = dm.advance(1, pos);
