@@ -95,6 +95,7 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     j["seconds_total"] = r.seconds_total;
     j["worst_hausdorff_over_eps"] = r.worst_hausdorff_over_eps;
     j["worst_min_angle_deg"] = r.worst_min_angle_deg;
+    j["worst_min_angle_off_creases_deg"] = r.worst_min_angle_off_creases_deg;
     j["worst_max_radius_edge"] = r.worst_max_radius_edge;
     j["worst_R_over_eps"] = r.worst_R_over_h;
     j["worst_normal_deviation_deg"] = r.worst_normal_dev_deg;
@@ -116,6 +117,9 @@ nlohmann::json report_json(const DeformRunReport& r, const Scenario& s) {
     j["first_self_intersection"] = r.first_self_intersection;
     j["first_inverted"] = r.first_inverted;
     j["init_vertices"] = r.init_vertices;
+    j["crease_edges"] = r.crease_edges;
+    j["crease_lines"] = r.crease_lines;
+    j["corners"] = r.corners;
     j["euler"] = r.euler;
     j["warnings"] = r.warnings;
     nlohmann::json examples = nlohmann::json::array();
@@ -258,10 +262,14 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
                     "per unit, %zu updates between them), %zu flips, %zu insertions, %zu removals, %.3f s in updates\n",
                     r.scenario.c_str(), r.samples, r.time_units, r.updates, r.emergency_updates, r.substeps,
                     r.max_substeps_per_unit, r.internal_updates, r.flips, r.insertions, r.removals, r.seconds_updates);
-        std::printf("worst over all time units: Hausdorff/eps %.3f, min angle %.2f deg, radius-edge %.2f, "
-                    "R/eps %.2f, normal deviation %.2f deg, self-intersections %zu, inverted %zu\n",
-                    r.worst_hausdorff_over_eps, r.worst_min_angle_deg, r.worst_max_radius_edge, r.worst_R_over_h,
-                    r.worst_normal_dev_deg, r.self_intersections, r.inverted);
+        std::printf("worst over all time units: Hausdorff/eps %.3f, min angle %.2f deg (%.2f off creases), "
+                    "radius-edge %.2f, R/eps %.2f, normal deviation %.2f deg, self-intersections %zu, inverted %zu\n",
+                    r.worst_hausdorff_over_eps, r.worst_min_angle_deg, r.worst_min_angle_off_creases_deg,
+                    r.worst_max_radius_edge, r.worst_R_over_h, r.worst_normal_dev_deg, r.self_intersections,
+                    r.inverted);
+        if (r.crease_edges > 0)
+            std::printf("creases at t = 0: %zu edges in %zu polylines, %zu corners\n", r.crease_edges, r.crease_lines,
+                        r.corners);
         for (const auto& [k, n] : r.violations) std::printf("monitor %s: %zu\n", k.c_str(), n);
         if (!a.out.empty()) std::printf("wrote %s/{mesh.pvd,log.csv,summary.json}\n", a.out.c_str());
         for (const std::string& f : failures.problems) std::printf("check (%s): %s\n", a.check.c_str(), f.c_str());
@@ -314,8 +322,8 @@ void register_deform(CLI::App& root, int& result) {
         ->check(finite_number())
         ->check(CLI::NonNegativeNumber);
     sub->add_option("--feature-angle", args->feature_angle,
-                    "Keep sharp edges: never flip an edge, or create one, whose 180 - dihedral exceeds this many degrees, "
-                    "and never decimate a vertex on one (180 = off)")
+                    "Creases: edges of the input mesh whose 180 - dihedral exceeds this many degrees (e.g. 45) are kept "
+                    "as mesh-edge chains through the motion, never flipped, corners never removed (180 = off)")
         ->capture_default_str()
         ->check(finite_number())
         ->check(CLI::Range(0.0, 180.0));

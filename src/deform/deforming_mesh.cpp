@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <numeric>
 #include <unordered_set>
 
+#include "dynmesh/deform/creases.hpp"
 #include "dynmesh/deform/initial_mesh.hpp"
 #include "dynmesh/deform/local_ops.hpp"
 #include "dynmesh/deform/size_field.hpp"
@@ -149,6 +151,17 @@ struct DeformingMesh::Impl {
     /// The mesh intersected itself at the end of the last unit (intersection_checks): a
     /// unit that starts so is not retried for it.
     bool intersecting = false;
+
+    /// Creases (spec §10.3; DeformOptions::feature_angle_deg): the polylines of crease
+    /// samples (slots, in order; corners at the ends), each crease sample's polyline and
+    /// rank, and the corners with their number of crease edges. The mesh marks the crease
+    /// edges in kLockedEdges: consecutive vertices of each polyline.
+    std::vector<std::vector<SampleId>> lines;
+    std::vector<char> line_closed;
+    std::vector<std::uint32_t> crease_line;  ///< per slot (kNoSlot: none, or a corner)
+    std::vector<std::uint32_t> crease_rank;
+    std::vector<std::uint8_t> corner_degree;  ///< per slot, > 0 for a corner
+    bool creases_on = false;
     /// The local size of a sample against the pass-level R: min(R, size) (R when off).
     [[nodiscard]] double rs(SampleId s, double R) const {
         return !size_on || !(size[s] < R) ? R : size[s];
@@ -185,6 +198,9 @@ struct DeformingMesh::Impl {
     }
     void grow(std::size_t n) {
         refused.resize(n, 0);
+        crease_line.resize(n, std::numeric_limits<std::uint32_t>::max());
+        crease_rank.resize(n, 0);
+        corner_degree.resize(n, 0);
         size.resize(n, std::numeric_limits<double>::quiet_NaN());
         pos.resize(n);
         state.resize(n, State::Dead);
@@ -293,19 +309,31 @@ struct DeformingMesh::Impl {
         }
         const Vec3 old_normal = face_normal(f);
         AddOptions ao;
-        ao.feature_angle_deg = params.feature_angle_deg;
+        const bool on_crease = crease_line[p] != kNoSlot;
+        if (on_crease) {
+            // A crease sample splits the crease edge between its polyline's neighbouring
+            // vertices (spec §10.3); without that edge it waits.
+            ao.split_edge = crease_edge_around(p);
+            if (!ao.split_edge.is_valid()) {
+                refused[p] = 1;
+                attach(p, grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
+                                       [&](std::uint32_t s) { return state[s] == State::Vertex; }).first);
+                return;
+            }
+        }
         const AddResult r = add_point(mesh, P(p), f, ao);
         touch();
         cur.flips += r.flips;
-        if (r.kind == AddCase::Vertex) {
-            violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)));
+        if (r.kind == AddCase::Vertex || r.kind == AddCase::LockedEdge) {
+            violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)) +
+                                                    (r.kind == AddCase::LockedEdge ? " or on its crease edge" : ""));
             refused[p] = 1;
             attach(p, sid(r.near_vertex));
             return;
         }
         ++cur.insertions;
         make_vertex(p, r.vertex);
-        const bool folded = star_folded(r.vertex, old_normal);
+        const bool folded = star_folded(r.vertex, on_crease ? nullptr : &old_normal);
         if (folded || star_intersects(r.vertex, grid, R)) {
             // Sparse samples or thin parts only (the theory rules it out): take the vertex out
             // again.
@@ -336,49 +364,178 @@ struct DeformingMesh::Impl {
                                        [&](std::uint32_t s) { return state[s] == State::Vertex ? vert_of[s] : Vertex(); });
     }
 
-    /// True when a triangle around v turns by 90 degrees or more against `reference` or
-    /// against a neighbouring triangle of the star.
-    bool star_folded(Vertex v, const Vec3& reference) const {
-        Vec3 prev{};
-        bool first = true;
-        Vec3 first_n{};
+    /// True when a triangle around v turns by 90 degrees or more against `reference` (when
+    /// given) or against the triangle across one of v's spokes, crease edges excepted.
+    bool star_folded(Vertex v, const Vec3* reference) const {
+        const auto locked = locked_edges(mesh);
         for (Halfedge h : mesh.outgoing_halfedges(v)) {
-            const Face f = mesh.face(h);
+            const Face f = mesh.face(h), g = mesh.face(SurfaceMesh::twin(h));
             if (!f.is_valid()) continue;
             const Vec3 n = face_normal(f);
-            if (!(dot(n, reference) > 0)) return true;
-            if (!first && !(dot(n, prev) > 0)) return true;
-            if (first) first_n = n;
-            first = false;
-            prev = n;
-        }
-        return !first && !(dot(prev, first_n) > 0);
-    }
-
-    /// Remove(vertex of sample s). On success the sample is no longer a vertex (state Dead;
-    /// the caller decides what it becomes) and leaves the grid.
-    /// True when an edge at v is sharp (DeformOptions::feature_angle_deg).
-    [[nodiscard]] bool on_sharp_edge(Vertex v) const {
-        if (params.feature_angle_deg >= 180.0) return false;
-        const double min_dihedral = std::numbers::pi - params.feature_angle_deg * std::numbers::pi / 180.0;
-        for (Halfedge h : mesh.outgoing_halfedges(v)) {
-            if (mesh.is_boundary(h) || mesh.is_boundary(mesh.twin(h))) continue;
-            const Point3 &a = mesh.position(v), &b = mesh.position(mesh.to_vertex(h));
-            if (dihedral_angle(a, b, mesh.position(mesh.opposite_vertex(h)),
-                               mesh.position(mesh.opposite_vertex(mesh.twin(h)))) < min_dihedral)
+            if (reference && !(dot(n, *reference) > 0)) return true;
+            if (g.is_valid() && !(locked.is_valid() && locked[SurfaceMesh::edge(h)]) && !(dot(n, face_normal(g)) > 0))
                 return true;
         }
         return false;
     }
 
-    /// Remove(v) of the vertex of s; with keep_sharp, a vertex on a sharp edge stays (for
-    /// the Decimation and the spacing repair, which may leave it).
-    bool remove_sample(SampleId s, PointGrid* grid, bool keep_sharp = false) {
+    // ---- creases (spec §10.3) -----------------------------------------------------------------
+    /// Patch of every face: the components of the faces joined across edges that are no
+    /// crease (empty without creases).
+    [[nodiscard]] std::vector<std::uint32_t> face_patches() const {
+        const auto locked = locked_edges(mesh);
+        if (!creases_on || !locked.is_valid()) return {};
+        std::vector<std::uint32_t> patch(mesh.faces_size(), kNoSlot);
+        std::vector<Face> stack;
+        std::uint32_t next_id = 0;
+        for (Face f : mesh.faces()) {
+            if (patch[f.idx()] != kNoSlot) continue;
+            patch[f.idx()] = next_id;
+            stack.push_back(f);
+            while (!stack.empty()) {
+                const Face g = stack.back();
+                stack.pop_back();
+                const Halfedge h0 = mesh.halfedge(g);
+                for (Halfedge h : {h0, mesh.next(h0), mesh.prev(h0)}) {
+                    const Face n = mesh.face(SurfaceMesh::twin(h));
+                    if (!n.is_valid() || locked[SurfaceMesh::edge(h)] || patch[n.idx()] != kNoSlot) continue;
+                    patch[n.idx()] = next_id;
+                    stack.push_back(n);
+                }
+            }
+            ++next_id;
+        }
+        return patch;
+    }
+    /// The crease edge a dormant crease sample p lies on: the mesh edge between the nearest
+    /// vertices of its polyline on either side (invalid when there is no such locked edge).
+    [[nodiscard]] Edge crease_edge_around(SampleId p) const {
+        const auto& line = lines[crease_line[p]];
+        const bool closed = line_closed[crease_line[p]] != 0;
+        const auto n = static_cast<std::ptrdiff_t>(line.size());
+        auto vertex_from = [&](std::ptrdiff_t step) -> Vertex {
+            std::ptrdiff_t i = static_cast<std::ptrdiff_t>(crease_rank[p]);
+            for (std::ptrdiff_t k = 0; k < n; ++k) {
+                i += step;
+                if (closed) i = (i + n) % n;
+                if (i < 0 || i >= n) return Vertex();
+                if (state[line[static_cast<std::size_t>(i)]] == State::Vertex) return vert_of[line[static_cast<std::size_t>(i)]];
+            }
+            return Vertex();
+        };
+        const Vertex a = vertex_from(-1), b = vertex_from(+1);
+        if (!a.is_valid() || !b.is_valid() || a == b) return Edge();
+        const Halfedge h = mesh.find_halfedge(a, b);
+        const auto locked = locked_edges(mesh);
+        if (!h.is_valid() || !locked.is_valid() || !locked[SurfaceMesh::edge(h)]) return Edge();
+        return SurfaceMesh::edge(h);
+    }
+
+    /// Marks the creases of `m` (feature_angle_deg) and records their polylines over the
+    /// samples; vertex_slot(v) is the slot of a vertex of m, or kNoSlot when it is no sample
+    /// (the polyline then skips it). Returns the crease edge count (0: creases stay off).
+    template <class VertexSlot>
+    std::size_t setup_creases(SurfaceMesh& m, VertexSlot&& vertex_slot) {
+        const Creases c = mark_creases(m, {.feature_angle_deg = params.feature_angle_deg});
+        const auto locked = locked_edges(m);
+        for (Vertex v : c.corners)
+            if (const std::uint32_t s = vertex_slot(v); s != kNoSlot)
+                corner_degree[s] = static_cast<std::uint8_t>(std::min<std::size_t>(255, locked_degree(m, locked, v)));
+        for (const auto& poly : c.lines) {
+            const bool closed = poly.size() > 2 && poly.front() == poly.back();
+            std::vector<SampleId> line;
+            for (std::size_t i = 0; i + (closed ? 1 : 0) < poly.size(); ++i)
+                if (const std::uint32_t s = vertex_slot(poly[i]); s != kNoSlot) line.push_back(s);
+            const auto id = static_cast<std::uint32_t>(lines.size());
+            for (std::uint32_t k = 0; k < line.size(); ++k)
+                if (corner_degree[line[k]] == 0) {
+                    crease_line[line[k]] = id;
+                    crease_rank[line[k]] = k;
+                }
+            lines.push_back(std::move(line));
+            line_closed.push_back(closed ? 1 : 0);
+        }
+        creases_on = c.edges > 0;
+        init.crease_edges = c.edges;
+        init.crease_lines = c.lines.size();
+        init.corners = c.corners.size();
+        return c.edges;
+    }
+    /// Forgets the creases (the mesh could not be built with them).
+    void drop_creases() {
+        lines.clear();
+        line_closed.clear();
+        std::fill(crease_line.begin(), crease_line.end(), kNoSlot);
+        std::fill(corner_degree.begin(), corner_degree.end(), 0);
+        creases_on = false;
+        if (auto l = locked_edges(mesh); l.is_valid()) mesh.remove_property(l);
+    }
+    /// The crease edges as sample pairs, to carry them to a renumbered or rebuilt mesh.
+    [[nodiscard]] std::vector<std::pair<SampleId, SampleId>> crease_pairs() const {
+        std::vector<std::pair<SampleId, SampleId>> out;
+        const auto locked = locked_edges(mesh);
+        if (!locked.is_valid()) return out;
+        for (Edge e : mesh.edges())
+            if (locked[e]) out.emplace_back(sid(mesh.vertex(e, 0)), sid(mesh.vertex(e, 1)));
+        return out;
+    }
+    /// Marks the given pairs on the mesh (those that are edges of it).
+    void relock(const std::vector<std::pair<SampleId, SampleId>>& pairs) {
+        if (!creases_on) return;
+        auto locked = lock_edges_property(mesh);
+        for (const auto& [a, b] : pairs)
+            if (state[a] == State::Vertex && state[b] == State::Vertex)
+                if (const Halfedge h = mesh.find_halfedge(vert_of[a], vert_of[b]); h.is_valid())
+                    locked[SurfaceMesh::edge(h)] = 1;
+    }
+    /// Crease integrity: along every polyline, consecutive vertices are joined by a crease
+    /// edge, corners are vertices with their crease edges, and there is no other crease edge.
+    /// Appends a line per problem (at most `cap`) and returns the problem count.
+    std::size_t crease_problems(std::vector<std::string>& out, std::size_t cap) const {
+        if (!creases_on) return 0;
+        std::size_t n = 0, expected = 0;
+        auto problem = [&](std::string s) {
+            if (n++ < cap) out.push_back(std::move(s));
+        };
+        const auto locked = locked_edges(mesh);
+        if (!locked.is_valid()) {
+            problem("the crease marks are lost");
+            return n;
+        }
+        for (SampleId s = 0; s < corner_degree.size(); ++s) {
+            if (corner_degree[s] == 0) continue;
+            if (state[s] != State::Vertex)
+                problem("corner " + idstr(s) + " is no longer a vertex");
+            else if (locked_degree(mesh, locked, vert_of[s]) != corner_degree[s])
+                problem("corner " + idstr(s) + " has " + std::to_string(locked_degree(mesh, locked, vert_of[s])) +
+                        " crease edges instead of " + std::to_string(corner_degree[s]));
+        }
+        for (std::size_t l = 0; l < lines.size(); ++l) {
+            std::vector<SampleId> vs;
+            for (SampleId s : lines[l])
+                if (state[s] == State::Vertex) vs.push_back(s);
+            if (line_closed[l] && vs.size() > 2) vs.push_back(vs.front());
+            for (std::size_t i = 0; i + 1 < vs.size(); ++i) {
+                ++expected;
+                const Halfedge h = mesh.find_halfedge(vert_of[vs[i]], vert_of[vs[i + 1]]);
+                if (!h.is_valid() || !locked[SurfaceMesh::edge(h)])
+                    problem("crease vertices " + idstr(vs[i]) + " and " + idstr(vs[i + 1]) +
+                            (h.is_valid() ? " are joined by an unmarked edge" : " are no longer joined by an edge"));
+            }
+        }
+        std::size_t marked = 0;
+        for (Edge e : mesh.edges()) marked += locked[e] != 0;
+        if (marked != expected)
+            problem(std::to_string(marked) + " crease edges where the polylines have " + std::to_string(expected));
+        return n;
+    }
+
+    /// Remove(v) of the vertex of sample s (a crease vertex is collapsed along its crease, a
+    /// corner stays: remove_point()). On success the sample is no longer a vertex (state
+    /// Dead; the caller decides what it becomes) and leaves the grid.
+    bool remove_sample(SampleId s, PointGrid* grid) {
         const Vertex v = vert_of[s];
-        if (keep_sharp && on_sharp_edge(v)) return false;
-        RemoveOptions ro;
-        ro.feature_angle_deg = params.feature_angle_deg;
-        const RemoveResult r = remove_point(mesh, v, ro);
+        const RemoveResult r = remove_point(mesh, v, RemoveOptions{});
         touch();
         cur.flips += r.flips;
         if (!r.removed) {
@@ -404,7 +561,6 @@ struct DeformingMesh::Impl {
     void global_flip() {
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
-        fo.feature_angle_deg = params.feature_angle_deg;
         const auto edges = all_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
         if (r.flips > 0) touch();
@@ -437,8 +593,17 @@ struct DeformingMesh::Impl {
     };
     /// `grid` holds every vertex (slots); with a cell of at least twice the largest
     /// circumradius, the cube around a ball meets at most 2 x 2 x 2 cells.
+    /// With creases, a vertex counts only for the balls of the triangles of its own patches
+    /// (spec §10.3: the faces reached from it without crossing a crease edge).
     [[nodiscard]] BallScan scan_balls(const PointGrid& grid) const {
         BallScan b;
+        const std::vector<std::uint32_t> patch = face_patches();
+        auto shares_patch = [&](std::uint32_t w, Face f) {
+            if (patch.empty()) return true;
+            for (Halfedge h : mesh.outgoing_halfedges(vert_of[w]))
+                if (const Face g = mesh.face(h); g.is_valid() && patch[g.idx()] == patch[f.idx()]) return true;
+            return false;
+        };
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
             const Point3 &a = mesh.position(vs[0]), &bb = mesh.position(vs[1]), &c = mesh.position(vs[2]);
@@ -452,7 +617,7 @@ struct DeformingMesh::Impl {
                 if (sqnorm(pos[w] - cc) > r2s) return;
                 const Vertex x = vert_of[w];
                 if (x == vs[0] || x == vs[1] || x == vs[2]) return;
-                if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive) {
+                if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive && shares_patch(w, f)) {
                     ++hits;
                     if (any == kNoSlot || w < any) any = w;
                 }
@@ -658,14 +823,30 @@ struct DeformingMesh::Impl {
     std::size_t decimation(double factor = 0.5) {
         const double R = max_circumradius();
         PointGrid grid = vertex_grid(R);
+        // Corners, then crease vertices, then the others, each in slot order: a surface
+        // vertex too close to a crease vertex is the one removed (spec §10.3).
+        std::vector<std::pair<int, SampleId>> order;
+        const auto locked = locked_edges(mesh);
+        for (Vertex v : mesh.vertices()) {
+            const SampleId s = sid(v);
+            order.emplace_back(corner_degree[s] > 0 ? 0 : locked_degree(mesh, locked, v) > 0 ? 1 : 2, s);
+        }
+        std::sort(order.begin(), order.end());
         std::vector<SampleId> vs;
-        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
-        std::sort(vs.begin(), vs.end());
+        std::vector<char> on_crease(state.size(), 0);
+        for (const auto& o : order) {
+            vs.push_back(o.second);
+            on_crease[o.second] = o.first < 2;
+        }
+        // The Deletion's decimation (factor 1/2) leaves crease vertices: removing them
+        // lengthens crease edges, which no flip can shorten, and R would grow with every
+        // deletion. The spacing repair (1/3) still thins a compressed crease.
+        const bool spare_creases = factor > 0.4;
         std::vector<char> black(state.size(), 0);
         for (SampleId v : vs) {
             if (black[v]) continue;
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
-                if (w == v || state[w] != State::Vertex) return;
+                if (w == v || state[w] != State::Vertex || (spare_creases && on_crease[w])) return;
                 ++cur.distance_evals;
                 if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
             });
@@ -680,7 +861,7 @@ struct DeformingMesh::Impl {
             if (mesh.n_vertices() <= 4) break;
             std::vector<SampleId> moving = dl[u];
             dl[u].clear();
-            if (!remove_sample(u, nullptr, /*keep_sharp=*/true)) {
+            if (!remove_sample(u, nullptr)) {
                 dl[u] = std::move(moving);
                 for (std::uint32_t i = 0; i < dl[u].size(); ++i) dpos[dl[u][i]] = i;
                 continue;
@@ -848,14 +1029,14 @@ struct DeformingMesh::Impl {
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
         const bool broken = !internal && folded_now > folded_at_step;
-        if (broken) rebuild();
+        if (broken && !creases_on) rebuild();
         refine_vert();
         if (!internal) {
             insertion();
             deletion();
         }
         spacing_repair();
-        if (rep.emergency && (folded_edges() > folded_at_step || has_self_intersections(mesh))) {
+        if (!creases_on && rep.emergency && (folded_edges() > folded_at_step || has_self_intersections(mesh))) {
             rebuild();
             refine_vert();
         }
@@ -915,10 +1096,13 @@ struct DeformingMesh::Impl {
         }
     }
 
-    /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90).
+    /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90);
+    /// crease edges, sharp by design, do not count.
     std::size_t folded_edges() const {
         std::size_t n = 0;
+        const auto locked = locked_edges(mesh);
         for (Edge e : mesh.edges()) {
+            if (locked.is_valid() && locked[e]) continue;
             const Face f0 = mesh.face(SurfaceMesh::halfedge(e, 0)), f1 = mesh.face(SurfaceMesh::halfedge(e, 1));
             if (!f0.is_valid() || !f1.is_valid()) continue;
             if (dot(face_normal(f0), face_normal(f1)) <= 0) ++n;
@@ -964,7 +1148,9 @@ struct DeformingMesh::Impl {
         }
         std::vector<SampleId> vsamples;
         for (std::uint32_t i : af.report.vertex_sample) vsamples.push_back(vs[i]);
+        const auto creases = crease_pairs();
         install_mesh(std::move(af.mesh), vsamples);
+        relock(creases);
         std::fill(refused.begin(), refused.end(), 0);  // another mesh: refusals may not stand
         global_flip();
         canonicalize();
@@ -1057,12 +1243,34 @@ struct DeformingMesh::Impl {
             for (Vertex v : copy.vertices()) copy.position(v) = pos[vs[v.idx()]];
             init.net = vs.size();
             init.tri0 = "given";
+            if (params.feature_angle_deg < 180.0)
+                setup_creases(copy, [&](Vertex v) { return vs[v.idx()]; });
             install_mesh(std::move(copy), vs);
         } else {
-            // The greedy h0-net, scanning the samples in slot order.
+            // Creases of the reference (spec §10.3), on a copy that carries their marks.
+            SurfaceMesh creased;
+            if (initial.reference != nullptr && params.feature_angle_deg < 180.0) {
+                creased = *initial.reference;
+                std::map<std::array<double, 3>, std::uint32_t> at;
+                for (std::uint32_t s = 0; s < pos.size(); ++s) at.emplace(std::array<double, 3>{pos[s].x, pos[s].y, pos[s].z}, s);
+                setup_creases(creased, [&](Vertex v) {
+                    const Point3& q = creased.position(v);
+                    const auto it = at.find({q.x, q.y, q.z});
+                    return it == at.end() ? kNoSlot : it->second;
+                });
+            }
+            // The greedy h0-net, scanning the corners, then the crease samples, then the
+            // others, each in slot order.
+            std::vector<SampleId> scan(pos.size());
+            std::iota(scan.begin(), scan.end(), 0u);
+            if (creases_on)
+                std::stable_sort(scan.begin(), scan.end(), [&](SampleId a, SampleId b) {
+                    auto rank = [&](SampleId s) { return corner_degree[s] > 0 ? 0 : crease_line[s] != kNoSlot ? 1 : 2; };
+                    return rank(a) < rank(b);
+                });
             std::vector<SampleId> vs;
             PointGrid g(h0);
-            for (SampleId s = 0; s < pos.size(); ++s) {
+            for (SampleId s : scan) {
                 bool close = false;
                 g.for_each_candidate(pos[s], h0, [&](std::uint32_t w) {
                     if (!close && distance(pos[w], pos[s]) < h0) close = true;
@@ -1072,6 +1280,7 @@ struct DeformingMesh::Impl {
                     vs.push_back(s);
                 }
             }
+            std::sort(vs.begin(), vs.end());
             init.net = vs.size();
             if (vs.size() < 4)
                 throw InvalidInput("deform: the sample set is too sparse: only " + std::to_string(vs.size()) +
@@ -1081,7 +1290,8 @@ struct DeformingMesh::Impl {
             if (initial.reference != nullptr) {
                 ReferenceMesh r;
                 try {
-                    r = initial_mesh_on_reference(pos, vs, *initial.reference, {.refine = params.init_refine});
+                    r = initial_mesh_on_reference(pos, vs, creases_on ? creased : *initial.reference,
+                                                  {.refine = params.init_refine, .decimate_first = creases_on});
                 } catch (const InvalidInput& e) {
                     throw InvalidInput(std::string("deform: cannot build Tri(0) on the reference mesh (") + e.what() + ")");
                 }
@@ -1090,8 +1300,13 @@ struct DeformingMesh::Impl {
                 init.tri0 = std::string(to_string(r.path));
                 init.net_added = r.added;
                 init.init_insertions = r.promoted;
-                if (!r.fallback_reason.empty())
+                if (creases_on && r.path != ReferenceMeshPath::Decimated) {
+                    violation(Violation::InitFallback, "the creases are dropped: decimating the reference failed (" +
+                                                           r.fallback_reason + ")");
+                    drop_creases();
+                } else if (!r.fallback_reason.empty() && !creases_on) {
                     violation(Violation::InitFallback, "Tri(0) by decimating the reference: " + r.fallback_reason);
+                }
             } else {
                 std::vector<Point3> pts;
                 for (SampleId s : vs) pts.push_back(pos[s]);
@@ -1175,7 +1390,9 @@ struct DeformingMesh::Impl {
             soup.triangles.push_back(t);
         }
         std::sort(soup.triangles.begin(), soup.triangles.end());
+        const auto creases = crease_pairs();
         install_mesh(SurfaceMesh::from_soup(soup), vs);
+        relock(creases);
     }
 
 };
@@ -1557,6 +1774,17 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
                 }
             }
         }
+    }
+    std::vector<std::string> crease_lines;
+    const std::size_t crease_problems = I.crease_problems(crease_lines, 10);
+    for (auto& line : crease_lines) fail(std::move(line));
+    if (I.creases_on) {
+        const auto locked = locked_edges(I.mesh);
+        std::size_t marked = 0;
+        if (locked.is_valid())
+            for (Edge e : I.mesh.edges()) marked += locked[e] != 0;
+        r.add("crease_edges", marked);
+        r.add("crease_problems", crease_problems);
     }
     if (options.self_intersections) {
         self_intersections = count_self_intersections(I.mesh);

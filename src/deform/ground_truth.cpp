@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/flips/flip_rules.hpp"
 #include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
 #include "dynmesh/geometry/triangle.hpp"
@@ -295,13 +296,22 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         tris.push_back({dense[v[0].idx()], dense[v[1].idx()], dense[v[2].idx()]});
     }
 
+    // Vertices on a crease edge (dense indices).
+    std::vector<char> on_crease(pts.size(), 0);
+    if (const auto locked = locked_edges(mesh); locked.is_valid())
+        for (const Edge e : mesh.edges())
+            if (locked[e])
+                for (int i = 0; i < 2; ++i) on_crease[dense[mesh.vertex(e, i).idx()]] = 1;
+
     // Faces: circumradius, angles, radius-edge, normal deviation.
-    double R = 0, min_angle = kPi, max_re = 0, dev_max = 0, dev_sum = 0;
+    double R = 0, min_angle = kPi, min_angle_off = kPi, max_re = 0, dev_max = 0, dev_sum = 0;
     std::size_t dev_n = 0, inverted = 0;
     for (const Tri& t : tris) {
         const Point3 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
         R = std::max(R, circumradius(a, b, c));
-        min_angle = std::min(min_angle, dynmesh::min_angle(a, b, c));
+        const double angle = dynmesh::min_angle(a, b, c);
+        min_angle = std::min(min_angle, angle);
+        if (!on_crease[t[0]] && !on_crease[t[1]] && !on_crease[t[2]]) min_angle_off = std::min(min_angle_off, angle);
         max_re = std::max(max_re, radius_edge_ratio(a, b, c));
         const Vec3 nf = triangle_normal(a, b, c);
         Vec3 sum{};
@@ -317,6 +327,7 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
     }
     r.R = R;
     r.min_angle_deg = tris.empty() ? nan : rad_to_deg(min_angle);
+    r.min_angle_off_creases_deg = tris.empty() ? nan : rad_to_deg(min_angle_off);
     r.max_radius_edge = max_re;
     r.normal_dev_max_deg = dev_max;
     r.normal_dev_mean_deg = dev_n > 0 ? dev_sum / static_cast<double>(dev_n) : nan;
@@ -427,7 +438,8 @@ std::vector<std::pair<std::string, double>> flatten(const FrameMetrics& m) {
             {"hausdorff", m.hausdorff},
             {"hausdorff_over_h", m.hausdorff_over_h},
             {"self_intersections", d(m.self_intersections)},
-            {"inverted", d(m.inverted)}};
+            {"inverted", d(m.inverted)},
+            {"min_angle_off_creases_deg", m.min_angle_off_creases_deg}};
 }
 
 }  // namespace dynmesh

@@ -150,10 +150,21 @@ ReferenceMesh initial_mesh_on_reference(std::span<const Point3> samples, std::sp
     ro.refine_diametric_balls = true;
     ro.min_spacing_factor = 1.0 / 3.0;
     ReferenceMesh out;
+    std::string a_failed;
+    if (options.decimate_first) {
+        try {
+            return decimate_reference(samples, net, reference);
+        } catch (const InvalidInput& a) {
+            a_failed = a.what();
+        }
+    }
     MeshRestrictedDelaunayResult r;
     try {
         r = restricted_delaunay_on_mesh(samples, net, reference, ro);
     } catch (const InvalidInput& b) {
+        if (!a_failed.empty())
+            throw InvalidInput(std::string("initial_mesh_on_reference: ") + b.what() +
+                               "; and decimating the reference failed: " + a_failed);
         try {
             out = decimate_reference(samples, net, reference);
         } catch (const InvalidInput& a) {
@@ -164,6 +175,7 @@ ReferenceMesh initial_mesh_on_reference(std::span<const Point3> samples, std::sp
         return out;
     }
     out.added = r.report.added;
+    out.fallback_reason = a_failed;
     if (options.refine) refine_to_fixed_point(samples, reference, ro, options, r, out);
     out.mesh = std::move(r.mesh);
     out.vertex_sample = std::move(r.report.vertex_sample);

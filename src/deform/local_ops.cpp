@@ -173,6 +173,11 @@ AddResult add_point(SurfaceMesh& m, const Point3& p, Face f, const AddOptions& o
         if (bary[i] > bary[largest]) largest = i;
     }
 
+    if (o.split_edge.is_valid()) {
+        DYNMESH_CHECK(m.is_valid(o.split_edge) && !m.is_deleted(o.split_edge),
+                      "add_point: edge e" + std::to_string(o.split_edge.idx()) + " is invalid or deleted");
+        n_small = 1;
+    }
     if (n_small >= 2) {  // Vertex case: refused, mesh unchanged
         r.kind = AddCase::Vertex;
         r.near_vertex = abc[largest];
@@ -186,10 +191,25 @@ AddResult add_point(SurfaceMesh& m, const Point3& p, Face f, const AddOptions& o
     if (n_small == 1) {
         r.kind = AddCase::Edge;
         const Halfedge opposite[3] = {h2, h0, h1};  // the edge opposite corner i
-        const Halfedge he = opposite[smallest];
-        const Point3 &x = m.position(m.from_vertex(he)), &y = m.position(m.to_vertex(he));
-        r.projected = x + (y - x) * segment_parameter(p, x, y);  // exactly on the edge
+        const Halfedge he = o.split_edge.is_valid() ? SurfaceMesh::halfedge(o.split_edge, 0) : opposite[smallest];
+        const Vertex vx = m.from_vertex(he), vy = m.to_vertex(he);
+        const Point3 &x = m.position(vx), &y = m.position(vy);
+        auto locked = locked_edges(m);
+        const bool was_locked = locked.is_valid() && locked[SurfaceMesh::edge(he)];
+        if (was_locked && !o.split_edge.is_valid()) {
+            r.kind = AddCase::LockedEdge;
+            r.near_vertex = distance(p, x) <= distance(p, y) ? vx : vy;
+            r.projected = cp.point;
+            r.offset = cp.distance;
+            return r;
+        }
+        double at = segment_parameter(p, x, y);
+        if (o.split_edge.is_valid()) at = std::clamp(at, 0.1, 0.9);  // never on an end
+        r.projected = x + (y - x) * at;  // exactly on the edge
         r.vertex = m.split_edge(SurfaceMesh::edge(he), r.projected);
+        if (was_locked)
+            for (Halfedge h : m.outgoing_halfedges(r.vertex))
+                if (m.to_vertex(h) == vx || m.to_vertex(h) == vy) locked[SurfaceMesh::edge(h)] = 1;
         for (Halfedge h : m.outgoing_halfedges(r.vertex))
             if (!m.is_boundary(h)) candidates.push_back(SurfaceMesh::edge(m.next(h)));
     } else {
@@ -364,6 +384,77 @@ std::variant<Triangles, std::string> polygon_cdt(const std::vector<Point2>& q) {
 
 }  // namespace
 
+namespace {
+
+/// Remove(v) of a vertex inside a chain of locked edges a - v - b (spec §10.3): v is
+/// collapsed onto a or b, so that the chain becomes a - b, still locked. Of the two, the
+/// collapse that keeps every surviving triangle's normal within 60 degrees of its old one is
+/// taken, the shorter edge first; then the local flip around the merged vertex.
+RemoveResult remove_crease_point(SurfaceMesh& m, Vertex v, const RemoveOptions& o,
+                                 EdgeProperty<std::uint8_t> locked, RemoveResult& r) {
+    std::vector<Halfedge> chain;
+    for (Halfedge h : m.outgoing_halfedges(v))
+        if (locked[SurfaceMesh::edge(h)]) chain.push_back(h);
+    const Point3 pv = m.position(v);
+    if (distance(pv, m.position(m.to_vertex(chain[1]))) < distance(pv, m.position(m.to_vertex(chain[0]))))
+        std::swap(chain[0], chain[1]);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Halfedge h = chain[i];
+        const Vertex a = m.to_vertex(h), b = m.to_vertex(chain[1 - i]);
+        if (!m.is_collapse_ok(h) || m.find_halfedge(a, b).is_valid()) continue;
+        // Triangles of v's star without a keep their other corners and get a for v: none may
+        // turn by 60 degrees or more, nor get a circumradius beyond twice the star's largest
+        // (a near-degenerate triangle would blow up the mesh's R).
+        bool bad = false;
+        const Point3& pa = m.position(a);
+        double star_r = 0;
+        for (Halfedge g : m.outgoing_halfedges(v))
+            if (!m.is_boundary(g))
+                star_r = std::max(star_r, circumradius(pv, m.position(m.to_vertex(g)), m.position(m.to_vertex(m.next(g)))));
+        for (Halfedge g : m.outgoing_halfedges(v)) {
+            if (m.is_boundary(g)) continue;
+            const Vertex x = m.to_vertex(g), y = m.to_vertex(m.next(g));
+            if (x == a || y == a) continue;
+            const Vec3 before = triangle_normal_raw(pv, m.position(x), m.position(y));
+            const Vec3 after = triangle_normal_raw(pa, m.position(x), m.position(y));
+            if (!(dot(before, after) > 0.5 * norm(before) * norm(after))) bad = true;
+            if (!(circumradius(pa, m.position(x), m.position(y)) <= 2 * star_r)) bad = true;
+        }
+        if (bad) continue;
+        // The collapse merges edge pairs (v x, a x) and may keep either index: re-mark every
+        // locked edge at a (and v b, which becomes a b) afterwards.
+        std::vector<Vertex> keep{b};
+        for (Halfedge g : m.outgoing_halfedges(a))
+            if (locked[SurfaceMesh::edge(g)] && m.to_vertex(g) != v) keep.push_back(m.to_vertex(g));
+        m.collapse(h);
+        for (Vertex x : keep) {
+            const Halfedge ax = m.find_halfedge(a, x);
+            DYNMESH_ASSERT(ax.is_valid(), "remove_point: the locked chain lost its edge");
+            locked[SurfaceMesh::edge(ax)] = 1;
+        }
+        r.removed = true;
+        if (o.flip_after) {
+            std::vector<Edge> seeds;
+            for (Halfedge g : m.outgoing_halfedges(a)) {
+                seeds.push_back(SurfaceMesh::edge(g));
+                if (!m.is_boundary(g)) seeds.push_back(SurfaceMesh::edge(m.next(g)));
+            }
+            const Vertex centre[1] = {a};
+            const LocalFlipOutcome lf = local_flip(m, centre, seeds, o.rule, o.feature_angle_deg, o.check_rings,
+                                                   o.max_repair_rounds, false, true);
+            r.flips = lf.flips;
+            r.not_improving = lf.not_improving;
+            r.balls_empty = lf.left.star == 0;
+        }
+        return r;
+    }
+    r.removed = false;
+    r.reason = "remove_point(" + vname(v) + "): no collapse along its locked edges keeps the mesh valid";
+    return r;
+}
+
+}  // namespace
+
 RemoveResult remove_point(SurfaceMesh& m, Vertex v, const RemoveOptions& o) {
     DYNMESH_CHECK(m.is_valid(v) && !m.is_deleted(v),
                   "remove_point: vertex " + vname(v) + " is invalid or deleted");
@@ -388,6 +479,11 @@ RemoveResult remove_point(SurfaceMesh& m, Vertex v, const RemoveOptions& o) {
     }
     if (k == 3 && m.opposite_vertex(m.find_halfedge(link[1], link[0])) == link[2])
         return refuse("the link triangle is already a face (tetrahedron)");
+    if (const auto locked = locked_edges(m); locked.is_valid()) {
+        const std::size_t deg = locked_degree(m, locked, v);
+        if (deg == 2) return remove_crease_point(m, v, o, locked, r);
+        if (deg != 0) return refuse("a corner of the locked edges (" + std::to_string(deg) + " of them meet there)");
+    }
 
     // Candidate planes: the incident triangles, the one closest to the star normal first.
     const Point3& pv = m.position(v);

@@ -32,7 +32,7 @@ FrameMetrics unmeasured(int t) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     FrameMetrics m;
     m.t = t;
-    m.R = m.h = m.R_over_h = m.min_angle_deg = m.max_radius_edge = m.min_edge_angle_deg = nan;
+    m.R = m.h = m.R_over_h = m.min_angle_deg = m.min_angle_off_creases_deg = m.max_radius_edge = m.min_edge_angle_deg = nan;
     m.normal_dev_max_deg = m.normal_dev_mean_deg = m.hausdorff = m.hausdorff_over_h = nan;
     return m;
 }
@@ -72,6 +72,9 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
     DeformingMesh dm(x0, params, init);
     rep.seconds_init = std::chrono::duration<double>(Clock::now() - t_init).count();
     rep.init_vertices = dm.init_report().vertices;
+    rep.crease_edges = dm.init_report().crease_edges;
+    rep.crease_lines = dm.init_report().crease_lines;
+    rep.corners = dm.init_report().corners;
     rep.euler = dm.init_report().euler;
     if (options.check_invariants) {  // the invariants at t = 0, as after an update
         const InitReport& ir = dm.init_report();
@@ -133,6 +136,8 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             if (std::isfinite(f.hausdorff_over_h))
                 rep.worst_hausdorff_over_eps = std::max(rep.worst_hausdorff_over_eps, f.hausdorff_over_h);
             rep.worst_min_angle_deg = std::min(rep.worst_min_angle_deg, f.min_angle_deg);
+            rep.worst_min_angle_off_creases_deg =
+                std::min(rep.worst_min_angle_off_creases_deg, f.min_angle_off_creases_deg);
             rep.worst_max_radius_edge = std::max(rep.worst_max_radius_edge, f.max_radius_edge);
             if (std::isfinite(f.R_over_h)) rep.worst_R_over_h = std::max(rep.worst_R_over_h, f.R_over_h);
             rep.worst_normal_dev_deg = std::max(rep.worst_normal_dev_deg, f.normal_dev_max_deg);

@@ -166,7 +166,21 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
     return v;
 }
 
-FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule, double feature_angle_deg) {
+EdgeProperty<std::uint8_t> lock_edges_property(SurfaceMesh& mesh) {
+    auto p = locked_edges(mesh);
+    return p.is_valid() ? p : mesh.add_edge_property<std::uint8_t>(kLockedEdges, 0);
+}
+
+std::size_t locked_degree(const SurfaceMesh& m, const EdgeProperty<std::uint8_t>& locked, Vertex v) {
+    if (!locked.is_valid() || m.is_isolated(v)) return 0;
+    std::size_t n = 0;
+    for (Halfedge h : m.outgoing_halfedges(v)) n += locked[SurfaceMesh::edge(h)] != 0;
+    return n;
+}
+
+FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule, double feature_angle_deg,
+                         const EdgeProperty<std::uint8_t>& locked) {
+    if (locked.is_valid() && !m.is_deleted(e) && locked[e]) return FlipVerdict::FeatureLocked;
     const FlipVerdict v = flip_verdict(m, e, rule);
     if (v != FlipVerdict::Flippable || feature_angle_deg >= 180.0) return v;
     const double min_dihedral = kPi - deg_to_rad(feature_angle_deg);

@@ -48,11 +48,12 @@ template <class Flags>
 class FlipQueue {
 public:
     FlipQueue(SurfaceMesh& m, FlipRule rule, double feature_angle_deg, FlipReport& report, Flags flags)
-        : mesh_(m), rule_(rule), feature_angle_deg_(feature_angle_deg), report_(report), in_queue_(std::move(flags)) {}
+        : mesh_(m), rule_(rule), feature_angle_deg_(feature_angle_deg), locked_(locked_edges(m)), report_(report),
+          in_queue_(std::move(flags)) {}
 
     bool test(Edge e) {
         ++report_.checks;
-        const FlipVerdict v = flip_verdict(mesh_, e, rule_, feature_angle_deg_);
+        const FlipVerdict v = flip_verdict(mesh_, e, rule_, feature_angle_deg_, locked_);
         if (v == FlipVerdict::Degenerate) ++report_.degenerate;
         if (v == FlipVerdict::NotImproving) ++report_.not_improving;
         if (v == FlipVerdict::FeatureLocked) ++report_.feature_locked;
@@ -97,6 +98,7 @@ private:
     SurfaceMesh& mesh_;
     FlipRule rule_;
     double feature_angle_deg_;
+    EdgeProperty<std::uint8_t> locked_;  ///< the mesh's kLockedEdges (fixed while it runs)
     FlipReport& report_;
     Flags in_queue_;
     std::deque<Edge> queue_;

@@ -139,7 +139,7 @@ TEST(GroundTruth, FlattenNamesMatchThePlotScript) {
     FrameMetrics f;
     f.R_over_h = 1.5;
     const auto v = flatten(f);
-    ASSERT_EQ(v.size(), 16u);
+    ASSERT_EQ(v.size(), 17u);
     EXPECT_EQ(v[0].first, "t");
     bool found = false;
     for (const auto& [k, x] : v)

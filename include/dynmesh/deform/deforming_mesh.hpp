@@ -116,15 +116,19 @@ struct DeformOptions {
     double size_factor = 0.0;
     /// Lipschitz constant of the size along the surface (>= 0).
     double grading = 0.3;
-    /// Sharp edges (spec §10.3; not in the paper): an edge whose 180 - dihedral angle exceeds
-    /// this many degrees is never flipped, no flip creates one (FlipOptions::
-    /// feature_angle_deg, in the global flips and in those of Add and Remove), and the
-    /// Decimation and spacing repair never remove a vertex on one. Creases of CAD meshes stay,
-    /// and no flip folds the mesh across a thin part. 180 (the default) = off. The guard
-    /// looks at the current dihedral angles: it also locks edges that the motion folded, so
-    /// the flips cannot repair them (spot.obj bent at 60: 3,158 inverted triangle-frames
-    /// instead of 166), which is why it is off; creases detected once on the input and
-    /// carried as polylines (spec §10.3) are not implemented.
+    /// Creases (spec §10.3; not in the paper): at t = 0, the edges of InitialSurface::
+    /// reference (or of InitialSurface::mesh) whose 180 - dihedral angle exceeds this many
+    /// degrees are creases (mark_creases(); chains of fewer than 3 edges dropped), cut into
+    /// polylines between corners (where 1 or 3+ meet). The mesh carries them as locked edges
+    /// (kLockedEdges) between consecutive crease vertices: no flip touches them; Tri(0) is the
+    /// reference decimated to the net (spec §10.5 A: corners, then crease samples, then the
+    /// others), a crease vertex is removed by collapsing it along its crease, a corner never;
+    /// a dormant crease sample becomes a vertex only by splitting its crease edge, and no
+    /// other sample may land on one; the Decimation removes a surface vertex rather than a
+    /// crease vertex near it. check_invariants() checks that every polyline's vertices are
+    /// joined by crease edges and the corners kept. Needs the crease samples to be reference
+    /// vertices (same coordinates); when the reference cannot be decimated, the creases are
+    /// dropped (Violation::InitFallback). 180 (the default) = off.
     double feature_angle_deg = 180.0;
     /// Spec §10.4 (with sub-stepping): a unit that ends with a new fold (an edge-angle <= 90
     /// degrees) or (with intersection_checks) a self-intersection is redone from its start
@@ -296,6 +300,8 @@ struct InitReport {
     /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps),
     /// on the reference mesh's vertex set or by Add.
     std::size_t init_insertions = 0;
+    /// Creases found at t = 0 (DeformOptions::feature_angle_deg): edges, polylines, corners.
+    std::size_t crease_edges = 0, crease_lines = 0, corners = 0;
     double seconds = 0;
 };
 

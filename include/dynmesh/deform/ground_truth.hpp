@@ -61,6 +61,9 @@ struct FrameMetrics {
     double h = 0;
     double R_over_h = 0;
     double min_angle_deg = 0;    ///< smallest triangle angle
+    /// Smallest angle of the triangles with no vertex on a crease edge (the mesh's
+    /// kLockedEdges; = min_angle_deg without them).
+    double min_angle_off_creases_deg = 0;
     double max_radius_edge = 0;  ///< largest circumradius / shortest edge
     /// Smallest edge-angle (the spec's min(theta1, theta2) = dihedral angle; 180 when flat).
     double min_edge_angle_deg = 0;
@@ -135,7 +138,7 @@ private:
 /// The fields as named numbers, for logs: "t", "samples", "vertices", "faces", "R", "h",
 /// "R_over_h", "min_angle_deg", "max_radius_edge", "min_edge_angle_deg",
 /// "normal_dev_max_deg", "normal_dev_mean_deg", "hausdorff", "hausdorff_over_h",
-/// "self_intersections", "inverted" (in this order; the names match
+/// "self_intersections", "inverted", "min_angle_off_creases_deg" (in this order; the names match
 /// scripts/plot_deform.py's columns).
 [[nodiscard]] std::vector<std::pair<std::string, double>> flatten(const FrameMetrics& m);
 

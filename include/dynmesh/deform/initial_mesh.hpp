@@ -21,6 +21,10 @@ struct ReferenceMeshOptions {
     std::size_t max_refine_rounds = 16;
     /// MeshRestrictedDelaunayOptions::max_rounds of each restricted Delaunay triangulation.
     std::size_t max_rdt_rounds = 16;
+    /// Path A first, path B only when it fails: for a reference with locked edges (creases,
+    /// kLockedEdges), which path A keeps as mesh edges (remove_point() collapses a vertex
+    /// along its chain) and path B does not know.
+    bool decimate_first = false;
 };
 
 enum class ReferenceMeshPath {
@@ -36,7 +40,8 @@ struct ReferenceMesh {
     ReferenceMeshPath path = ReferenceMeshPath::RestrictedDelaunay;
     std::size_t added = 0;     ///< samples added to the net for the topology or the balls
     std::size_t promoted = 0;  ///< samples the refinement made vertices
-    /// Path B's failure when path A was taken.
+    /// The failure of the path tried first (B, or A with decimate_first) when the other one
+    /// was taken.
     std::string fallback_reason;
 };
 
@@ -53,6 +58,8 @@ struct ReferenceMesh {
 ///    itself with every vertex removed (remove_point(), which keeps the topology) except the
 ///    net; reference vertices that are no sample go first. Needs the net's samples to be
 ///    reference vertices (same coordinates); a sample vertex that cannot be removed stays.
+/// With options.decimate_first, A is tried before B. A keeps the reference's kLockedEdges
+/// property: the result's locked edges join consecutive net vertices of each chain.
 /// The result is a closed manifold with the reference's Euler characteristic and components.
 /// Deterministic.
 /// \throw InvalidInput when neither path works (B's reason, and A's: a reference vertex that

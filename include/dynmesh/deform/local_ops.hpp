@@ -35,7 +35,11 @@ namespace dynmesh {
 enum class AddCase {
     Interior,  ///< strictly inside: 1-to-3 face split
     Edge,      ///< on an edge (one barycentric coordinate < bary_tol): 2-to-4 edge split
-    Vertex     ///< at a corner (two coordinates < bary_tol): refused, mesh unchanged
+    Vertex,    ///< at a corner (two coordinates < bary_tol): refused, mesh unchanged
+    /// On a locked edge (kLockedEdges) that AddOptions::split_edge does not name: refused,
+    /// mesh unchanged (near_vertex = the nearer end). Only a sample known to lie on the
+    /// crease splits it.
+    LockedEdge
 };
 
 struct AddOptions {
@@ -49,6 +53,10 @@ struct AddOptions {
     std::size_t max_repair_rounds = 4;  ///< re-seeded flip rounds before giving up
     /// Sharp-feature guard of every flip (FlipOptions::feature_angle_deg; 180 = off).
     double feature_angle_deg = 180.0;
+    /// When valid: the Edge case on this edge whatever the barycentric coordinates (p~ is
+    /// the point of the segment nearest to p). For a sample known to lie on a crease, whose
+    /// crease edge it must split; `nearest` is then not used.
+    Edge split_edge;
 };
 
 struct AddResult {
@@ -77,7 +85,8 @@ struct AddResult {
 ///   angle x p~ y is obtuse and xy is flippable under options.rule, flip it and stop (at most
 ///   one flip).
 /// - Edge: split_edge at p~ (put exactly on the edge), then the same test on the outer edges
-///   of the new triangles (at most one flip).
+///   of the new triangles (at most one flip). Both halves of a locked edge (kLockedEdges)
+///   are locked.
 /// - Vertex: nothing changes; returns kind = Vertex and near_vertex (the caller puts p in that
 ///   vertex's dormant list and raises its diagnostic).
 /// Then the new vertex moves from p~ to p exactly (bit-identical coordinates), and the local
@@ -124,6 +133,10 @@ struct RemoveResult {
 /// 3D link vertices; a plane whose triangulation uses an existing mesh edge as a diagonal is
 /// rejected. Applies the first plane that works with SurfaceMesh::remove_vertex(v, tris), then
 /// (options.flip_after) the local flip seeded with all edges among the link vertices.
+/// Locked edges (kLockedEdges, e.g. creases): a vertex inside a chain of them (two locked
+/// spokes a, b) is removed by collapsing it onto a or b instead, so that ab is a locked edge
+/// afterwards (RemoveResult::triangles and plane_normal are then empty); a vertex where one
+/// or more than two locked edges meet (a corner) is refused.
 /// Refuses (removed = false, reason set, mesh unchanged) a boundary or isolated vertex, a
 /// vertex whose removal would leave fewer than 4 vertices, a link that is not a simple cycle,
 /// a tetrahedron's vertex, and the case where no plane works. Never throws for geometric

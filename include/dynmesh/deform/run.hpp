@@ -95,6 +95,7 @@ struct DeformRunReport {
     // Worst values over every measured time unit.
     double worst_hausdorff_over_eps = 0;  ///< Hausdorff / h (h = eps gamma measured)
     double worst_min_angle_deg = 180;
+    double worst_min_angle_off_creases_deg = 180;  ///< triangles with no crease vertex
     double worst_max_radius_edge = 0;
     double worst_R_over_h = 0;
     double worst_normal_dev_deg = 0;
@@ -126,6 +127,7 @@ struct DeformRunReport {
     std::string first_self_intersection, first_inverted;
     /// Tri(0): vertices and Euler characteristic (kept by every update).
     std::size_t init_vertices = 0;
+    std::size_t crease_edges = 0, crease_lines = 0, corners = 0;  ///< InitReport's
     long long euler = 0;
     /// Events to show even without --check, one line each with its time unit: every update
     /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger), every

@@ -31,7 +31,7 @@ enum class FlipVerdict {
     Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area
     RuleFails,       ///< the rule's geometric condition does not hold
     NotImproving,    ///< the rule holds but the guard against cycles does not (counted)
-    FeatureLocked    ///< the rule holds but the edge, or the one it would create, is sharp
+    FeatureLocked    ///< the edge is locked (kLockedEdges), or the rule holds but it or the one it would create is sharp
 };
 
 /// The four corners of edge e: p->q is halfedge(e, 0), r opposite it, s opposite its twin.
@@ -77,12 +77,31 @@ struct Def3Conditions {
 /// True when the triangle is degenerate: area < 1e-14 * (longest edge)^2.
 [[nodiscard]] bool is_degenerate_triangle(const Point3& a, const Point3& b, const Point3& c);
 
+/// Name of the edge property (std::uint8_t, non-zero = locked) that marks edges no flip may
+/// touch, e.g. the creases of a CAD mesh. Every flip routine of the library honours it
+/// (FlipVerdict::FeatureLocked): flip_all(), flip_from(), the local flips of Add and Remove.
+inline constexpr const char* kLockedEdges = "e:locked";
+/// The mesh's kLockedEdges property, or an invalid one when it has none.
+[[nodiscard]] inline EdgeProperty<std::uint8_t> locked_edges(const SurfaceMesh& mesh) {
+    return mesh.get_edge_property<std::uint8_t>(kLockedEdges);
+}
+/// The mesh's kLockedEdges property, added (all edges free) when it has none.
+EdgeProperty<std::uint8_t> lock_edges_property(SurfaceMesh& mesh);
+/// Number of locked spokes at v (0 without the property).
+[[nodiscard]] std::size_t locked_degree(const SurfaceMesh& mesh, const EdgeProperty<std::uint8_t>& locked, Vertex v);
+
 /// Full test of edge e under `rule`, including boundary, degeneracy and condition (v).
 [[nodiscard]] FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule);
-/// As above, plus the sharp-feature guard: a flippable edge whose 180 - dihedral, or that of
-/// the edge the flip would create, exceeds feature_angle_deg is FeatureLocked (180 = off).
+/// As above, plus the locks: an edge marked in `locked` (when valid), or a flippable edge
+/// whose 180 - dihedral, or that of the edge the flip would create, exceeds
+/// feature_angle_deg, is FeatureLocked (180 = off).
 [[nodiscard]] FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule,
-                                       double feature_angle_deg);
+                                       double feature_angle_deg, const EdgeProperty<std::uint8_t>& locked);
+/// As above with the mesh's own kLockedEdges property.
+[[nodiscard]] inline FlipVerdict flip_verdict(const SurfaceMesh& mesh, Edge e, FlipRule rule,
+                                              double feature_angle_deg) {
+    return flip_verdict(mesh, e, rule, feature_angle_deg, locked_edges(mesh));
+}
 [[nodiscard]] inline bool is_flippable(const SurfaceMesh& mesh, Edge e, FlipRule rule,
                                        double feature_angle_deg = 180.0) {
     return flip_verdict(mesh, e, rule, feature_angle_deg) == FlipVerdict::Flippable;
