@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "dynmesh/deform/deforming_mesh.hpp"
@@ -205,6 +206,44 @@ TEST(Substep, AVertexSentThroughTheOppositeWallIsDetected) {
     EXPECT_TRUE(std::any_of(st.violations.begin(), st.violations.end(),
                             [](const ViolationRecord& v) { return v.kind == Violation::SubstepCapHit; }));
     EXPECT_GT(count_self_intersections(dm.mesh()), 0u);
+}
+
+TEST(Substep, AnInducedSelfIntersectionIsDetectedAndRepaired) {
+    // One vertex slides along the sphere over three of its neighbours' spacing in one unit.
+    // Moved in one piece (max_substeps = 1) its star folds over the triangles beyond: the
+    // mesh intersects itself, and the monitors say so. Sub-stepped, the updates between the
+    // sub-steps re-triangulate around it as it goes: no intersection, no fold.
+    const auto P0 = sphere_samples(3000, 29);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    auto jump = [&](std::size_t max_substeps, StepReport& st) {
+        DeformOptions o;
+        o.lambda = 1e-3;
+        o.h0 = 0.09;
+        o.max_substeps = max_substeps;
+        auto dm = std::make_unique<DeformingMesh>(P0, o, InitialSurface{.surface = &sphere});
+        const SampleId id = smallest_vertex_sample(*dm);
+        const Vertex v = dm->vertex_of(id);
+        const SampleId w = dm->sample_of(dm->mesh().to_vertex(*dm->mesh().outgoing_halfedges(v).begin()));
+        auto pos = P0;
+        pos[id] = normalized(P0[id] + 3.0 * (P0[w] - P0[id]));  // along the sphere, past w
+        st = dm->advance(1, pos);
+        return dm;
+    };
+    StepReport one, cut;
+    const auto a = jump(1, one);
+    EXPECT_EQ(one.substeps, 1u);
+    EXPECT_GT(count_self_intersections(a->mesh()), 0u) << "the jump does not induce an intersection";
+    EXPECT_TRUE(std::any_of(one.violations.begin(), one.violations.end(), [](const ViolationRecord& v) {
+        return v.kind == Violation::NormalInverted || v.kind == Violation::EdgeAngleBelow90;
+    })) << "the intersection went unreported";
+    const auto b = jump(DeformOptions{}.max_substeps, cut);
+    if (cut.update_due) (void)b->update();
+    EXPECT_GT(cut.substeps, 1u);
+    EXPECT_GT(cut.internal_updates, 0u);
+    EXPECT_EQ(count_self_intersections(b->mesh()), 0u);
+    EXPECT_FALSE(cut.self_intersecting);
+    const auto inv = b->check_invariants();
+    EXPECT_TRUE(inv.ok()) << inv.summary();
 }
 
 }  // namespace
