@@ -38,23 +38,42 @@ bool faces_meet(const SurfaceMesh& m, Face f, Face g) {
 bool star_intersects(const SurfaceMesh& m, Vertex v, const PointGrid& grid, double radius,
                      const std::function<Vertex(std::uint32_t)>& vertex_of) {
     std::vector<Face> star;
-    for (Halfedge h : m.outgoing_halfedges(v))
+    Bbox3 box;  // of the star: a face that meets it overlaps this box (closed)
+    box.extend(m.position(v));
+    for (Halfedge h : m.outgoing_halfedges(v)) {
         if (const Face f = m.face(h); f.is_valid()) star.push_back(f);
-    std::vector<Face> near;
+        box.extend(m.position(m.to_vertex(h)));
+    }
+    auto overlaps = [&](Face g) {
+        Bbox3 b;
+        for (Vertex x : m.face_vertices(g)) b.extend(m.position(x));
+        for (std::size_t i = 0; i < 3; ++i)
+            if (b.max[i] < box.min[i] || b.min[i] > box.max[i]) return false;
+        return true;
+    };
+    // Faces met before (each face is seen from up to three of its vertices).
+    std::vector<Face> tested;
+    bool hit = false;
+    const double r2 = radius * radius;
     grid.for_each_candidate(m.position(v), radius, [&](std::uint32_t id) {
+        if (hit) return;
         const Vertex w = vertex_of(id);
         if (!w.is_valid() || w.idx() >= m.vertices_size() || m.is_deleted(w) || w == v) return;
-        for (Halfedge h : m.outgoing_halfedges(w))
-            if (const Face f = m.face(h); f.is_valid()) near.push_back(f);
+        if (sqdistance(m.position(w), m.position(v)) > r2) return;
+        for (Halfedge h : m.outgoing_halfedges(w)) {
+            const Face g = m.face(h);
+            if (!g.is_valid() || !overlaps(g)) continue;
+            if (std::find(star.begin(), star.end(), g) != star.end()) continue;
+            if (std::find(tested.begin(), tested.end(), g) != tested.end()) continue;
+            tested.push_back(g);
+            for (Face f : star)
+                if (faces_meet(m, f, g)) {
+                    hit = true;
+                    return;
+                }
+        }
     });
-    std::sort(near.begin(), near.end(), [](Face x, Face y) { return x.idx() < y.idx(); });
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    for (Face g : near) {
-        if (std::find(star.begin(), star.end(), g) != star.end()) continue;
-        for (Face f : star)
-            if (faces_meet(m, f, g)) return true;
-    }
-    return false;
+    return hit;
 }
 
 }  // namespace dynmesh::detail
