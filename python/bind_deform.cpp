@@ -92,7 +92,7 @@ void bind_deform(py::module_& m) {
                                 "t = 1, 2, ... and update() when it says update_due.")
         .def(py::init([](const Doubles& positions, double lambda_, double kappa, std::optional<double> h0,
                          std::optional<int> horizon, std::optional<py::array> reference_faces, bool emergency_steps,
-                         std::uint64_t seed, std::size_t max_substeps) {
+                         std::uint64_t seed, std::size_t max_substeps, double size_factor, double feature_angle_deg) {
                  auto self = std::make_unique<PyDeformingMesh>();
                  const std::vector<Point3> p = points3_of(positions, "positions");
                  DeformOptions params;
@@ -103,6 +103,8 @@ void bind_deform(py::module_& m) {
                  params.emergency_steps = emergency_steps;
                  params.seed = seed;
                  params.max_substeps = max_substeps;
+                 params.size_factor = size_factor;
+                 params.feature_angle_deg = feature_angle_deg;
                  InitialSurface initial;
                  if (reference_faces) {
                      self->reference = std::make_unique<SurfaceMesh>(SurfaceMesh::from_soup(soup_of(p, *reference_faces)));
@@ -116,6 +118,8 @@ void bind_deform(py::module_& m) {
              py::arg("horizon") = py::none(), py::arg("reference_faces") = py::none(),
              py::arg("emergency_steps") = true, py::arg("seed") = 1,
              py::arg("max_substeps") = DeformOptions{}.max_substeps,
+             py::arg("size_factor") = DeformOptions{}.size_factor,
+             py::arg("feature_angle_deg") = DeformOptions{}.feature_angle_deg,
              "positions: the samples at t = 0, (n, 3). lambda_: how far any surface point moves in one\n"
              "time unit at most. kappa: the step constant (next step floor(R / (kappa lambda)) later).\n"
              "h0: the sampling radius (estimated when None). horizon: no step after this time.\n"
@@ -123,7 +127,10 @@ void bind_deform(py::module_& m) {
              "t = 0 (the first mesh is the restricted Delaunay triangulation of the net against it;\n"
              "without it the mesh is reconstructed from the samples, which must then be dense).\n"
              "max_substeps: advance() cuts a time unit into at most this many sub-steps when the\n"
-             "samples move faster than the schedule allows (1: off).")
+             "samples move faster than the schedule allows (1: off).\n"
+             "size_factor: a sample's size is min(R, size_factor * local feature size) (0: off).\n"
+             "feature_angle_deg: edges of the reference sharper than this (180 - dihedral) are creases,\n"
+             "kept as mesh-edge chains through the motion (180: off).")
         .def(
             "advance",
             [](PyDeformingMesh& self, int t, const Doubles& positions) {
@@ -211,6 +218,9 @@ void bind_deform(py::module_& m) {
                 d["components"] = r.components;
                 d["invariant_failures"] = r.invariant_failures;
                 d["nonempty_balls"] = r.nonempty_balls;
+                d["crease_edges"] = r.crease_edges;
+                d["crease_lines"] = r.crease_lines;
+                d["corners"] = r.corners;
                 d["seconds_init"] = r.seconds;
                 return d;
             },

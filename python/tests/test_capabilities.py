@@ -149,6 +149,51 @@ def test_deforming_mesh_refuses_bad_input():
         dynmesh.DeformingMesh(bad, lambda_=0.001)
 
 
+def grid_cube(n):
+    """The cube [-1, 1]^3 with an n x n grid of squares per face, two triangles each, outward."""
+    index, pts, tris = {}, [], []
+
+    def vertex(k):
+        if k not in index:
+            index[k] = len(pts)
+            pts.append([-1 + 2.0 * c / n for c in k])
+        return index[k]
+
+    for axis in range(3):
+        u, w = (axis + 1) % 3, (axis + 2) % 3
+        for side in (0, n):
+            for i in range(n):
+                for j in range(n):
+                    q = []
+                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        k = [0, 0, 0]
+                        k[axis], k[u], k[w] = side, i + di, j + dj
+                        q.append(vertex(tuple(k)))
+                    for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3])):
+                        a, b, c = (np.array(pts[x]) for x in t)
+                        outward = np.cross(b - a, c - a)[axis] * (1 if side else -1) > 0
+                        tris.append(t if outward else (t[0], t[2], t[1]))
+    return np.array(pts), np.array(tris, dtype=np.int64)
+
+
+def test_deforming_mesh_keeps_creases_given_a_feature_angle():
+    v, f = grid_cube(8)
+    with_creases = dynmesh.DeformingMesh(v, lambda_=0.05, reference_faces=f, feature_angle_deg=45.0)
+    init = with_creases.init_report
+    assert (init["crease_edges"], init["crease_lines"], init["corners"]) == (12 * 8, 12, 8)
+    assert init["tri0"] == "decimated"
+    assert dynmesh.DeformingMesh(v, lambda_=0.05, reference_faces=f).init_report["crease_edges"] == 0
+    for t in range(1, 11):  # a quarter twist about z, back and forth
+        a = 0.3 * np.sin(np.pi * t / 10) * v[:, 2]
+        c, s = np.cos(a), np.sin(a)
+        x = np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1], v[:, 2]])
+        if with_creases.advance(t, x)["update_due"]:
+            with_creases.update()
+        check = with_creases.check()
+        assert check["crease_edges"] >= 12 * 8 and check["crease_problems"] == 0, check["problems"]
+        assert check["self_intersections"] == 0
+
+
 # ---- dynamic quadtree meshes -------------------------------------------------------------------
 
 def apply_change(points, simplices, change):
