@@ -171,6 +171,9 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     if (!is_file && !a.warp.empty())
         throw UsageError("--warp is for a mesh file; the scenario '" + a.scenario +
                          "' has its own motion");
+    if (!is_file && a.feature_angle < 180.0)
+        throw UsageError("--feature-angle finds the creases of a mesh file; the scenario '" + a.scenario +
+                         "' is a smooth surface");
     if (!(static_cast<double>(a.steps) / a.speed <= 1e8))
         throw UsageError("--steps / --speed = " + std::to_string(static_cast<double>(a.steps) / a.speed) +
                          " time units is too many (at most 1e8)");
@@ -326,7 +329,12 @@ void register_deform(CLI::App& root, int& result) {
                     "as mesh-edge chains through the motion, never flipped, corners never removed (180 = off)")
         ->capture_default_str()
         ->check(finite_number())
-        ->check(CLI::Range(0.0, 180.0));
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                const double x = std::stod(v);
+                return x > 0 && x <= 180 ? std::string() : "must be in (0, 180] degrees, got " + v;
+            },
+            "(0, 180]"));
     sub->add_option("--seed", args->seed, "Random seed of the samples")->capture_default_str();
     sub->add_option("--out", args->out,
                     "Output directory: mesh_NNNNN.<format> per time unit, mesh.pvd (vtp), log.csv, summary.json, "

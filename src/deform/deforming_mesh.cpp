@@ -468,7 +468,7 @@ struct DeformingMesh::Impl {
         std::fill(crease_line.begin(), crease_line.end(), kNoSlot);
         std::fill(corner_degree.begin(), corner_degree.end(), 0);
         creases_on = false;
-        if (auto l = locked_edges(mesh); l.is_valid()) mesh.remove_property(l);
+        init.crease_edges = init.crease_lines = init.corners = 0;
     }
     /// The crease edges as sample pairs, to carry them to a renumbered or rebuilt mesh.
     [[nodiscard]] std::vector<std::pair<SampleId, SampleId>> crease_pairs() const {
@@ -846,7 +846,8 @@ struct DeformingMesh::Impl {
         for (SampleId v : vs) {
             if (black[v]) continue;
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
-                if (w == v || state[w] != State::Vertex || (spare_creases && on_crease[w])) return;
+                if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && on_crease[w]))
+                    return;
                 ++cur.distance_evals;
                 if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
             });
@@ -1345,8 +1346,9 @@ struct DeformingMesh::Impl {
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
         touch();
-        // A caller's mesh may carry the property already (e.g. another DeformingMesh's mesh).
+        // A caller's mesh may carry the properties already (e.g. another DeformingMesh's mesh).
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
+        if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
@@ -1611,10 +1613,10 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
     }
     rep.inverted_triangles = inverted;
     rep.new_folds = folded > I.folded_at_step ? folded - I.folded_at_step : 0;
-    // Only a cut unit is tested: one moved at once within the budget (the paper's case)
-    // keeps the state it had.
+    // Only a cut unit, or one that ends with a new fold or an inverted triangle, is tested: one
+    // moved at once within the budget (the paper's case) keeps the state it had.
     rep.self_intersecting = I.intersecting;
-    if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0))
+    if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0 || rep.new_folds > 0 || inverted > 0))
         rep.self_intersecting = has_self_intersections(I.mesh);
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;

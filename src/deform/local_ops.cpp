@@ -430,7 +430,7 @@ RemoveResult remove_crease_point(SurfaceMesh& m, Vertex v, const RemoveOptions& 
         for (Vertex x : keep) {
             const Halfedge ax = m.find_halfedge(a, x);
             DYNMESH_ASSERT(ax.is_valid(), "remove_point: the locked chain lost its edge");
-            locked[SurfaceMesh::edge(ax)] = 1;
+            if (ax.is_valid()) locked[SurfaceMesh::edge(ax)] = 1;
         }
         r.removed = true;
         if (o.flip_after) {

@@ -54,12 +54,10 @@ bool star_intersects(const SurfaceMesh& m, Vertex v, const PointGrid& grid, doub
     // Faces met before (each face is seen from up to three of its vertices).
     std::vector<Face> tested;
     bool hit = false;
-    const double r2 = radius * radius;
     grid.for_each_candidate(m.position(v), radius, [&](std::uint32_t id) {
         if (hit) return;
         const Vertex w = vertex_of(id);
         if (!w.is_valid() || w.idx() >= m.vertices_size() || m.is_deleted(w) || w == v) return;
-        if (sqdistance(m.position(w), m.position(v)) > r2) return;
         for (Halfedge h : m.outgoing_halfedges(w)) {
             const Face g = m.face(h);
             if (!g.is_valid() || !overlaps(g)) continue;

@@ -82,7 +82,8 @@ struct DeformOptions {
     /// closer than R/3 (old vertices under compression), remove one vertex of each such pair
     /// (Decimation with radius R/3) and run RefineVert, so spacing >= R/3 holds at every step.
     bool spacing_repair = true;
-    /// Spec §4.3: after the global flips of every update (and at t = 0), check every
+    /// Spec §4.3: after the global flips of every update at an integer time (and at t = 0;
+    /// not after the updates between sub-steps), check every
     /// triangle's diametric ball against a grid of the vertices and report the balls that
     /// hold one (Violation::NonEmptyBall). Costs about one global flip pass (some 60 % of a
     /// 100K-sample update on the sphere); off, only a flip loop that hits its cap is reported.
@@ -118,17 +119,30 @@ struct DeformOptions {
     double grading = 0.3;
     /// Creases (spec §10.3; not in the paper): at t = 0, the edges of InitialSurface::
     /// reference (or of InitialSurface::mesh) whose 180 - dihedral angle exceeds this many
-    /// degrees are creases (mark_creases(); chains of fewer than 3 edges dropped), cut into
-    /// polylines between corners (where 1 or 3+ meet). The mesh carries them as locked edges
-    /// (kLockedEdges) between consecutive crease vertices: no flip touches them; Tri(0) is the
-    /// reference decimated to the net (spec §10.5 A: corners, then crease samples, then the
-    /// others), a crease vertex is removed by collapsing it along its crease, a corner never;
-    /// a dormant crease sample becomes a vertex only by splitting its crease edge, and no
-    /// other sample may land on one; the Decimation removes a surface vertex rather than a
-    /// crease vertex near it. check_invariants() checks that every polyline's vertices are
-    /// joined by crease edges and the corners kept. Needs the crease samples to be reference
-    /// vertices (same coordinates); when the reference cannot be decimated, the creases are
-    /// dropped (Violation::InitFallback). 180 (the default) = off.
+    /// degrees are creases (mark_creases(); chains of fewer than 3 edges dropped, so a coarse
+    /// CAD mesh may have none), cut into polylines between corners (where 1 or 3+ meet). The
+    /// mesh carries them as locked edges (kLockedEdges) between consecutive crease vertices:
+    /// - Tri(0) is the reference decimated to the net (spec §10.5 A: corners, then crease
+    ///   samples, then the others). This needs the net to be reference vertices (same
+    ///   coordinates); otherwise the restricted Delaunay path is taken and the creases are
+    ///   dropped (Violation::InitFallback).
+    /// - No flip touches a crease edge. Departure from the spec: the dihedral-angle guard of
+    ///   flip_verdict() is not kept as a second lock (it also locks edges the motion folded).
+    /// - Remove collapses a crease vertex along its crease onto a neighbour (the spec
+    ///   re-triangulates each side by a CDT with the new crease edge constrained; the result
+    ///   has the same edges on the crease); a corner is never removed; the Decimation never
+    ///   picks a corner, prefers removing a surface vertex to a crease vertex, and the
+    ///   Deletion's decimation leaves crease vertices to the spacing repair.
+    /// - A dormant crease sample becomes a vertex only by splitting the crease edge between
+    ///   its polyline's neighbouring vertices; no other sample may land on a crease edge (it
+    ///   stays dormant: samples inserted later never split a crease). Dormant crease samples
+    ///   attach to the nearest vertex of any kind (the spec: of their own polyline).
+    /// - Crease edges are no folds for the monitors, and the advancing-front rebuild is never
+    ///   used (it would lose the creases); the diametric-ball diagnostic counts a vertex only
+    ///   for the triangles of its own patches.
+    /// check_invariants() checks that every polyline's vertices are joined by crease edges and
+    /// the corners keep theirs. Without a reference or a given mesh it does nothing. 180 (the
+    /// default) = off.
     double feature_angle_deg = 180.0;
     /// Spec §10.4 (with sub-stepping): a unit that ends with a new fold (an edge-angle <= 90
     /// degrees) or (with intersection_checks) a self-intersection is redone from its start
@@ -171,7 +185,7 @@ enum class Violation {
     CircumradiusGrowth,         ///< R(t) exceeded the L3.6 bound times R at the last step
     RefineCapHit,               ///< RefineVert hit refine_max_iters
     DeletionCapHit,             ///< Deletion hit deletion_max_iters
-    AddVertexCase,              ///< Add found the sample on an existing vertex (kept dormant)
+    AddVertexCase,              ///< Add found the sample on an existing vertex, or on a crease edge it may not split (kept dormant)
     FarSample,                  ///< a sample lies farther than 2R from the mesh (kept dormant)
     AddFolded,  ///< Add would fold the mesh or make it intersect itself; undone, kept dormant
     RemoveFailed,               ///< a vertex removal found no valid re-triangulation

@@ -54,8 +54,9 @@ struct AddOptions {
     /// Sharp-feature guard of every flip (FlipOptions::feature_angle_deg; 180 = off).
     double feature_angle_deg = 180.0;
     /// When valid: the Edge case on this edge whatever the barycentric coordinates (p~ is
-    /// the point of the segment nearest to p). For a sample known to lie on a crease, whose
-    /// crease edge it must split; `nearest` is then not used.
+    /// the point of the segment nearest to p, kept within its middle 80 %). For a sample
+    /// known to lie on a crease, whose crease edge it must split; add_point()'s face
+    /// argument then only has to be a valid face.
     Edge split_edge;
 };
 
