@@ -309,7 +309,7 @@ struct DeformingMesh::Impl {
         }
         const Vec3 old_normal = face_normal(f);
         AddOptions ao;
-        const bool on_crease = crease_line[p] != kNoSlot;
+        bool on_crease = crease_line[p] != kNoSlot;
         if (on_crease) {
             // A crease sample splits the crease edge between its polyline's neighbouring
             // vertices (spec §10.3); without that edge it waits.
@@ -321,7 +321,13 @@ struct DeformingMesh::Impl {
                 return;
             }
         }
-        const AddResult r = add_point(mesh, P(p), f, ao);
+        AddResult r = add_point(mesh, P(p), f, ao);
+        if (r.kind == AddCase::LockedEdge && !on_crease && adopt_into_crease(p, f)) {
+            // A sample inserted on a crease edge after t = 0 is a crease sample: it splits it.
+            on_crease = true;
+            ao.split_edge = crease_edge_around(p);
+            if (ao.split_edge.is_valid()) r = add_point(mesh, P(p), f, ao);
+        }
         touch();
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex || r.kind == AddCase::LockedEdge) {
@@ -380,6 +386,25 @@ struct DeformingMesh::Impl {
     }
 
     // ---- creases (spec §10.3) -----------------------------------------------------------------
+    /// The nearest vertices (samples) of crease sample p's polyline on either side of it
+    /// (kNoSample where there is none).
+    [[nodiscard]] std::pair<SampleId, SampleId> crease_neighbours(SampleId p) const {
+        const auto& line = lines[crease_line[p]];
+        const bool closed = line_closed[crease_line[p]] != 0;
+        const auto n = static_cast<std::ptrdiff_t>(line.size());
+        auto vertex_from = [&](std::ptrdiff_t step) -> SampleId {
+            std::ptrdiff_t i = static_cast<std::ptrdiff_t>(crease_rank[p]);
+            for (std::ptrdiff_t k = 0; k < n; ++k) {
+                i += step;
+                if (closed) i = (i + n) % n;
+                if (i < 0 || i >= n) return kNoSample;
+                const SampleId x = line[static_cast<std::size_t>(i)];
+                if (x != p && state[x] == State::Vertex) return x;
+            }
+            return kNoSample;
+        };
+        return {vertex_from(-1), vertex_from(+1)};
+    }
     /// Patch of every face: the components of the faces joined across edges that are no
     /// crease (empty without creases).
     [[nodiscard]] std::vector<std::uint32_t> face_patches() const {
@@ -410,25 +435,74 @@ struct DeformingMesh::Impl {
     /// The crease edge a dormant crease sample p lies on: the mesh edge between the nearest
     /// vertices of its polyline on either side (invalid when there is no such locked edge).
     [[nodiscard]] Edge crease_edge_around(SampleId p) const {
-        const auto& line = lines[crease_line[p]];
-        const bool closed = line_closed[crease_line[p]] != 0;
-        const auto n = static_cast<std::ptrdiff_t>(line.size());
-        auto vertex_from = [&](std::ptrdiff_t step) -> Vertex {
-            std::ptrdiff_t i = static_cast<std::ptrdiff_t>(crease_rank[p]);
-            for (std::ptrdiff_t k = 0; k < n; ++k) {
-                i += step;
-                if (closed) i = (i + n) % n;
-                if (i < 0 || i >= n) return Vertex();
-                if (state[line[static_cast<std::size_t>(i)]] == State::Vertex) return vert_of[line[static_cast<std::size_t>(i)]];
-            }
-            return Vertex();
-        };
-        const Vertex a = vertex_from(-1), b = vertex_from(+1);
-        if (!a.is_valid() || !b.is_valid() || a == b) return Edge();
+        const auto [sa, sb] = crease_neighbours(p);
+        if (sa == kNoSample || sb == kNoSample || sa == sb) return Edge();
+        const Vertex a = vert_of[sa], b = vert_of[sb];
         const Halfedge h = mesh.find_halfedge(a, b);
         const auto locked = locked_edges(mesh);
         if (!h.is_valid() || !locked.is_valid() || !locked[SurfaceMesh::edge(h)]) return Edge();
         return SurfaceMesh::edge(h);
+    }
+
+    /// Makes p, which lies on a crease edge of face f (add_point() said AddCase::LockedEdge),
+    /// a sample of that crease: it joins the polyline between the edge's two ends, among the
+    /// dormant samples there in the order of their projections on the edge. False when f has
+    /// no crease edge or its polyline is not found.
+    bool adopt_into_crease(SampleId p, Face f) {
+        const auto locked = locked_edges(mesh);
+        if (!creases_on || !locked.is_valid()) return false;
+        Halfedge best;
+        double bd = std::numeric_limits<double>::infinity();
+        const Halfedge h0 = mesh.halfedge(f);
+        for (Halfedge h : {h0, mesh.next(h0), mesh.prev(h0)}) {
+            if (!locked[SurfaceMesh::edge(h)]) continue;
+            const Point3 &x = mesh.position(mesh.from_vertex(h)), &y = mesh.position(mesh.to_vertex(h));
+            const double d = distance(P(p), x + (y - x) * segment_parameter(P(p), x, y));
+            if (d < bd) {
+                bd = d;
+                best = h;
+            }
+        }
+        if (!best.is_valid()) return false;
+        const SampleId a = sid(mesh.from_vertex(best)), b = sid(mesh.to_vertex(best));
+        for (std::uint32_t c = 0; c < lines.size(); ++c) {
+            if (crease_line[a] != kNoSlot && crease_line[a] != c) continue;
+            if (crease_line[b] != kNoSlot && crease_line[b] != c) continue;
+            auto& line = lines[c];
+            const auto n = static_cast<std::ptrdiff_t>(line.size());
+            for (std::ptrdiff_t ia = 0; ia < n; ++ia) {
+                if (line[static_cast<std::size_t>(ia)] != a) continue;
+                for (const std::ptrdiff_t step : {std::ptrdiff_t{1}, std::ptrdiff_t{-1}}) {
+                    // Walk from a to the next vertex of the line; it must be b.
+                    std::vector<std::ptrdiff_t> between;
+                    std::ptrdiff_t i = ia;
+                    bool found = false;
+                    for (std::ptrdiff_t k = 0; k < n; ++k) {
+                        i += step;
+                        if (line_closed[c]) i = (i + n) % n;
+                        if (i < 0 || i >= n) break;
+                        const SampleId x = line[static_cast<std::size_t>(i)];
+                        if (state[x] == State::Vertex) {
+                            found = x == b;
+                            break;
+                        }
+                        between.push_back(i);
+                    }
+                    if (!found) continue;
+                    const double tp = segment_parameter(P(p), P(a), P(b));
+                    std::ptrdiff_t after = ia;  // p goes right after this index, walking by step
+                    for (std::ptrdiff_t j : between)
+                        if (segment_parameter(P(line[static_cast<std::size_t>(j)]), P(a), P(b)) < tp) after = j;
+                    const std::ptrdiff_t at = step > 0 ? after + 1 : after;  // vector position
+                    line.insert(line.begin() + at, p);
+                    crease_line[p] = c;
+                    for (std::uint32_t k = 0; k < line.size(); ++k)
+                        if (corner_degree[line[k]] == 0) crease_rank[line[k]] = k;
+                    return true;
+                }
+            }
+        }
+        return false;
     }
 
     /// Marks the creases of `m` (feature_angle_deg) and records their polylines over the
@@ -1759,7 +1833,9 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
                 const double d = distance(I.pos[w], I.pos[s]);
                 min_spacing = std::min(min_spacing, d);
                 const double r = std::min(I.rs(s, R), I.rs(w, R));
-                if (I.ext[w] > I.ext[s] && d < options.spacing_factor * r)
+                // Two corners of the creases are fixed by the input and never removed.
+                const bool corners = I.corner_degree[s] > 0 && I.corner_degree[w] > 0;
+                if (I.ext[w] > I.ext[s] && d < options.spacing_factor * r && !corners)
                     fail("vertices " + I.idstr(s) + " and " + I.idstr(w) + " are " + std::to_string(d / r) +
                          (r < R ? " r (their local size) apart" : " R apart"));
             });

@@ -205,6 +205,44 @@ TEST(Creases, AddSplitsALockedEdgeOnlyWhenAsked) {
     EXPECT_EQ(locked_degree(cube, locked, r.vertex), 2u);
 }
 
+TEST(DeformCreases, ASampleInsertedOnACreaseSplitsItsEdge) {
+    // A sample queued after t = 0 at the midpoint of a crease edge joins that crease: the
+    // next update makes it a vertex between the edge's two ends, with both halves crease
+    // edges (a sample on no crease would have to stay dormant there).
+    const SurfaceMesh cube = grid_cube(6);
+    std::vector<Point3> pos = cube.positions();
+    DeformOptions o;
+    o.lambda = 0.01;
+    o.feature_angle_deg = 45;
+    InitialSurface init;
+    init.reference = &cube;
+    DeformingMesh dm(pos, o, init);
+    const SurfaceMesh& m = dm.mesh();
+    const auto locked = locked_edges(m);
+    Edge e;
+    for (Edge x : m.edges())
+        if (locked[x] && !e.is_valid()) e = x;
+    ASSERT_TRUE(e.is_valid());
+    const SampleId a = dm.sample_of(m.vertex(e, 0)), b = dm.sample_of(m.vertex(e, 1));
+    const Point3 mid = 0.5 * (pos[a] + pos[b]);
+    const SampleId id = dm.queue_insertion(mid);
+    pos.push_back(mid);
+    const StepReport st = dm.advance(1, pos);
+    (void)st;
+    (void)dm.update();
+    const Vertex v = dm.vertex_of(id);
+    ASSERT_TRUE(v.is_valid()) << "the inserted sample stayed dormant";
+    const auto lk = locked_edges(dm.mesh());
+    EXPECT_EQ(locked_degree(dm.mesh(), lk, v), 2u);
+    for (SampleId end : {a, b}) {
+        const Halfedge h = dm.mesh().find_halfedge(v, dm.vertex_of(end));
+        ASSERT_TRUE(h.is_valid());
+        EXPECT_TRUE(lk[SurfaceMesh::edge(h)]);
+    }
+    const CheckReport inv = dm.check_invariants();
+    EXPECT_EQ(inv.integer("crease_problems"), 0) << inv.summary();
+}
+
 /// Non-crease edges whose two triangles turn by 90 degrees or more.
 std::size_t folds_off_creases(const SurfaceMesh& m) {
     const auto locked = locked_edges(m);
