@@ -899,18 +899,17 @@ struct DeformingMesh::Impl {
         PointGrid grid = vertex_grid(R);
         // Corners, then crease vertices, then the others, each in slot order: a surface
         // vertex too close to a crease vertex is the one removed (spec §10.3).
-        std::vector<std::pair<int, SampleId>> order;
-        const auto locked = locked_edges(mesh);
-        for (Vertex v : mesh.vertices()) {
-            const SampleId s = sid(v);
-            order.emplace_back(corner_degree[s] > 0 ? 0 : locked_degree(mesh, locked, v) > 0 ? 1 : 2, s);
-        }
-        std::sort(order.begin(), order.end());
         std::vector<SampleId> vs;
-        std::vector<char> on_crease(state.size(), 0);
-        for (const auto& o : order) {
-            vs.push_back(o.second);
-            on_crease[o.second] = o.first < 2;
+        vs.reserve(mesh.n_vertices());
+        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+        std::sort(vs.begin(), vs.end());
+        std::vector<char> on_crease;
+        if (creases_on) {
+            on_crease.assign(state.size(), 0);
+            const auto locked = locked_edges(mesh);
+            for (SampleId s : vs) on_crease[s] = corner_degree[s] > 0 || locked_degree(mesh, locked, vert_of[s]) > 0;
+            auto rank = [&](SampleId s) { return corner_degree[s] > 0 ? 0 : on_crease[s] ? 1 : 2; };
+            std::stable_sort(vs.begin(), vs.end(), [&](SampleId a, SampleId b) { return rank(a) < rank(b); });
         }
         // The Deletion's decimation (factor 1/2) leaves crease vertices: removing them
         // lengthens crease edges, which no flip can shorten, and R would grow with every
@@ -920,7 +919,7 @@ struct DeformingMesh::Impl {
         for (SampleId v : vs) {
             if (black[v]) continue;
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
-                if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && on_crease[w]))
+                if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && !on_crease.empty() && on_crease[w]))
                     return;
                 ++cur.distance_evals;
                 if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
