@@ -134,14 +134,15 @@ struct DeformOptions {
     ///   picks a corner, prefers removing a surface vertex to a crease vertex, and the
     ///   Deletion's decimation leaves crease vertices to the spacing repair.
     /// - A dormant crease sample becomes a vertex only by splitting the crease edge between
-    ///   its polyline's neighbouring vertices; no other sample may land on a crease edge (it
-    ///   stays dormant: samples inserted later never split a crease). Dormant crease samples
-    ///   attach to the nearest vertex of any kind (the spec: of their own polyline).
+    ///   its polyline's neighbouring vertices; a sample inserted later that lands on a crease
+    ///   edge joins that polyline (between the samples it lies between) and splits it.
+    ///   Dormant crease samples attach to the nearest vertex of any kind (the spec: of their
+    ///   own polyline).
     /// - Crease edges are no folds for the monitors, and the advancing-front rebuild is never
     ///   used (it would lose the creases); the diametric-ball diagnostic counts a vertex only
     ///   for the triangles of its own patches.
     /// check_invariants() checks that every polyline's vertices are joined by crease edges and
-    /// the corners keep theirs. Without a reference or a given mesh it does nothing. 180 (the
+    /// the corners keep theirs; the spacing invariant does not count a pair of corners. Without a reference or a given mesh it does nothing. 180 (the
     /// default) = off.
     double feature_angle_deg = 180.0;
     /// Spec §10.4 (with sub-stepping): a unit that ends with a new fold (an edge-angle <= 90
