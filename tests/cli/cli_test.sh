@@ -921,7 +921,11 @@ deform_check)
     run 0 "$bin" deform stretch --samples 1500 --steps 24 --check --report inv.json --quiet
     [ "$(json_get inv.json "['check_level']")" = invariants ] || fail "bare --check is not the invariants level"
     [ "$(json_get inv.json "['check_failures'].__len__()")" = 0 ] || fail "check_failures listed at exit 0"
-    run 1 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --check=strict --report strict.json --quiet
+    # Eight times too fast: sub-stepped, every integer time passes the strict check (balls
+    # and monitors included); the paper alone (--max-substeps 1) trips the monitors.
+    run 0 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --check=strict --report fast.json --quiet
+    [ "$(json_get fast.json "['substeps']")" -gt "$(json_get fast.json "['time_units']")" ] || fail "the fast stretch was not sub-stepped"
+    run 1 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --max-substeps 1 --check=strict --report strict.json --quiet
     [ "$(json_get strict.json "['check_level']")" = strict ] || fail "check_level"
     python3 - <<'PY' || fail "--check=strict does not list every monitor it fails on"
 import json
