@@ -43,7 +43,7 @@ Creases trace(const SurfaceMesh& m, const EdgeProperty<std::uint8_t>& locked) {
     for (Vertex v : m.vertices())
         for (Halfedge h : m.outgoing_halfedges(v))
             if (locked[SurfaceMesh::edge(h)] && !used[SurfaceMesh::edge(h).idx()]) walk(h);
-    for (Edge e : m.edges()) c.edges += locked[e] != 0;
+    c.edges = locked_edge_count(m);
     return c;
 }
 

@@ -597,8 +597,7 @@ struct DeformingMesh::Impl {
                             (h.is_valid() ? " are joined by an unmarked edge" : " are no longer joined by an edge"));
             }
         }
-        std::size_t marked = 0;
-        for (Edge e : mesh.edges()) marked += locked[e] != 0;
+        const std::size_t marked = locked_edge_count(mesh);
         if (marked != expected)
             problem(std::to_string(marked) + " crease edges where the polylines have " + std::to_string(expected));
         return n;
@@ -1858,11 +1857,7 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
     const std::size_t crease_problems = I.crease_problems(crease_lines, 10);
     for (auto& line : crease_lines) fail(std::move(line));
     if (I.creases_on) {
-        const auto locked = locked_edges(I.mesh);
-        std::size_t marked = 0;
-        if (locked.is_valid())
-            for (Edge e : I.mesh.edges()) marked += locked[e] != 0;
-        r.add("crease_edges", marked);
+        r.add("crease_edges", locked_edge_count(I.mesh));
         r.add("crease_problems", crease_problems);
     }
     if (options.self_intersections) {

@@ -171,6 +171,14 @@ EdgeProperty<std::uint8_t> lock_edges_property(SurfaceMesh& mesh) {
     return p.is_valid() ? p : mesh.add_edge_property<std::uint8_t>(kLockedEdges, 0);
 }
 
+std::size_t locked_edge_count(const SurfaceMesh& m) {
+    const auto locked = locked_edges(m);
+    std::size_t n = 0;
+    if (locked.is_valid())
+        for (Edge e : m.edges()) n += locked[e] != 0;
+    return n;
+}
+
 std::size_t locked_degree(const SurfaceMesh& m, const EdgeProperty<std::uint8_t>& locked, Vertex v) {
     if (!locked.is_valid() || m.is_isolated(v)) return 0;
     std::size_t n = 0;

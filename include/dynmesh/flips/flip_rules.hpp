@@ -87,6 +87,8 @@ inline constexpr const char* kLockedEdges = "e:locked";
 }
 /// The mesh's kLockedEdges property, added (all edges free) when it has none.
 EdgeProperty<std::uint8_t> lock_edges_property(SurfaceMesh& mesh);
+/// Number of locked edges of the mesh (0 without the property).
+[[nodiscard]] std::size_t locked_edge_count(const SurfaceMesh& mesh);
 /// Number of locked spokes at v (0 without the property).
 [[nodiscard]] std::size_t locked_degree(const SurfaceMesh& mesh, const EdgeProperty<std::uint8_t>& locked, Vertex v);
 
