@@ -151,6 +151,10 @@ struct DeformingMesh::Impl {
     /// The mesh intersected itself at the end of the last unit (intersection_checks): a
     /// unit that starts so is not retried for it.
     bool intersecting = false;
+    /// The last global flip converged and the mesh has changed since only by Add and Remove,
+    /// which flip locally from every edge they touch (Lawson propagation): a global flip
+    /// would find nothing to do. Cleared when the vertices move or a mesh is installed.
+    bool flips_settled = false;
 
     /// Creases (spec §10.3; DeformOptions::feature_angle_deg): the polylines of crease
     /// samples (slots, in order; corners at the ends), each crease sample's polyline and
@@ -543,6 +547,7 @@ struct DeformingMesh::Impl {
         std::fill(corner_degree.begin(), corner_degree.end(), 0);
         creases_on = false;
         init.crease_edges = init.crease_lines = init.corners = 0;
+        flips_settled = false;  // unlocked edges may flip
     }
     /// The crease edges as sample pairs, to carry them to a renumbered or rebuilt mesh.
     [[nodiscard]] std::vector<std::pair<SampleId, SampleId>> crease_pairs() const {
@@ -632,6 +637,7 @@ struct DeformingMesh::Impl {
     /// balls is checked by report_balls() on the mesh an update or the initialisation ends
     /// with).
     void global_flip() {
+        if (flips_settled) return;
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
         const auto edges = all_edges();
@@ -641,6 +647,7 @@ struct DeformingMesh::Impl {
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
             violation(Violation::NonEmptyBall, "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
+        flips_settled = r.converged;
     }
 
     /// §4.3: every diametric ball must be empty of vertices after the global flips (a grid
@@ -924,10 +931,13 @@ struct DeformingMesh::Impl {
                 if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
             });
         }
-        PointGrid white(grid_cell(R));
         std::vector<SampleId> blacks;
-        for (SampleId v : vs) (black[v] ? blacks.push_back(v) : white.insert(v, P(v)));
+        for (SampleId v : vs)
+            if (black[v]) blacks.push_back(v);
         if (blacks.empty()) return 0;
+        PointGrid white(grid_cell(R));
+        for (SampleId v : vs)
+            if (!black[v]) white.insert(v, P(v));
         auto posf = [&](std::uint32_t s) { return P(s); };
         std::size_t removed = 0;
         for (SampleId u : blacks) {
@@ -1031,6 +1041,7 @@ struct DeformingMesh::Impl {
             if (state[s] != State::Dead) pos[s] = to[s];
         for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
         touch();
+        flips_settled = false;
     }
 
     /// Moves the samples from pos to `to` in n = ceil(max relative move / budget) equal
@@ -1101,18 +1112,12 @@ struct DeformingMesh::Impl {
         std::fill(refused.begin(), refused.end(), 0);
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
-        const bool broken = !internal && folded_now > folded_at_step;
-        if (broken && !creases_on) rebuild();
         refine_vert();
         if (!internal) {
             insertion();
             deletion();
         }
         spacing_repair();
-        if (!creases_on && rep.emergency && (folded_edges() > folded_at_step || has_self_intersections(mesh))) {
-            rebuild();
-            refine_vert();
-        }
         // The ball check is a diagnostic of the states the caller sees, at integer times (an
         // update between sub-steps is followed by more motion within the same unit).
         if (!internal) report_balls("after the update's global flips");
@@ -1187,50 +1192,6 @@ struct DeformingMesh::Impl {
     Vec3 face_normal(Face f) const {
         const auto vs = mesh.face_vertices(f);
         return triangle_normal_raw(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2]));
-    }
-
-    /// Rebuilds Tri from the current vertex positions (advancing front), every other live
-    /// sample dormant at its nearest vertex. A result that is not a closed manifold with the
-    /// Euler characteristic and components of Tri(0) is rolled back: the mesh stays as it was
-    /// and Violation::TopologyRollback says why.
-    void rebuild() {
-        std::vector<SampleId> vs;
-        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
-        std::sort(vs.begin(), vs.end());
-        std::vector<Point3> pts;
-        for (SampleId s : vs) pts.push_back(P(s));
-        const std::string what = "the rebuild from " + std::to_string(vs.size()) + " vertices";
-        AdvancingFrontResult af;
-        try {
-            af = reconstruct_advancing_front_with_report(pts);
-        } catch (const Error& e) {
-            ++cur.rollbacks;
-            violation(Violation::TopologyRollback, what + " failed (" + e.what() + "); the mesh is kept");
-            return;
-        }
-        MeshCheckOptions co;
-        co.require_closed = true;
-        co.check_degenerate = false;
-        const CheckReport mc = check_mesh(af.mesh, co);
-        if (!mc.ok() || mc.integer("euler") != euler || static_cast<std::size_t>(mc.integer("components")) != components) {
-            ++cur.rollbacks;
-            violation(Violation::TopologyRollback,
-                      what + " is undone: it gives " + (mc.ok() ? "" : "a mesh with problems, ") +
-                          "Euler characteristic " + std::to_string(mc.integer("euler")) + " and " + std::to_string(mc.integer("components")) +
-                          " components instead of " + std::to_string(euler) + " and " + std::to_string(components) +
-                          "; the mesh is kept");
-            return;
-        }
-        std::vector<SampleId> vsamples;
-        for (std::uint32_t i : af.report.vertex_sample) vsamples.push_back(vs[i]);
-        const auto creases = crease_pairs();
-        install_mesh(std::move(af.mesh), vsamples);
-        relock(creases);
-        std::fill(refused.begin(), refused.end(), 0);  // another mesh: refusals may not stand
-        global_flip();
-        canonicalize();
-        ++cur.rebuilds;
-        violation(Violation::Rebuild, "mesh rebuilt from " + std::to_string(vs.size()) + " vertices");
     }
 
     /// The size field at t = 0 (DeformOptions::size_factor): from the caller's feature sizes,
@@ -1346,9 +1307,11 @@ struct DeformingMesh::Impl {
             std::vector<SampleId> vs;
             PointGrid g(h0);
             for (SampleId s : scan) {
+                // With a size field, the net is as dense as the size asks (spec §10.2).
+                const double hs = size_on ? std::min(h0, size[s]) : h0;
                 bool close = false;
-                g.for_each_candidate(pos[s], h0, [&](std::uint32_t w) {
-                    if (!close && distance(pos[w], pos[s]) < h0) close = true;
+                g.for_each_candidate(pos[s], hs, [&](std::uint32_t w) {
+                    if (!close && distance(pos[w], pos[s]) < hs) close = true;
                 });
                 if (!close) {
                     g.insert(s, pos[s]);
@@ -1366,7 +1329,9 @@ struct DeformingMesh::Impl {
                 ReferenceMesh r;
                 try {
                     r = initial_mesh_on_reference(pos, vs, creases_on ? creased : *initial.reference,
-                                                  {.refine = params.init_refine, .decimate_first = creases_on});
+                                                  {.refine = params.init_refine,
+                                                   .decimate_first = creases_on,
+                                                   .size = size_on ? std::span<const double>(size) : std::span<const double>()});
                 } catch (const InvalidInput& e) {
                     throw InvalidInput(std::string("deform: cannot build Tri(0) on the reference mesh (") + e.what() + ")");
                 }
@@ -1418,6 +1383,7 @@ struct DeformingMesh::Impl {
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
         touch();
+        flips_settled = false;
         // A caller's mesh may carry the properties already (e.g. another DeformingMesh's mesh).
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);

@@ -53,7 +53,8 @@ void refine_to_fixed_point(std::span<const Point3> samples, const SurfaceMesh& r
             const std::size_t before = net.size();
             for (std::uint32_t p = 0; p < samples.size(); ++p) {
                 if (is_vertex[p] || blocked[p]) continue;
-                if (g.nearest(samples[p], at, [](std::uint32_t) { return true; }).second > R / 3) {
+                const double r = options.size.empty() ? R : std::min(R, options.size[p]);
+                if (g.nearest(samples[p], at, [](std::uint32_t) { return true; }).second > r / 3) {
                     g.insert(p, samples[p]);
                     net.push_back(p);
                 }

@@ -138,9 +138,8 @@ struct DeformOptions {
     ///   edge joins that polyline (between the samples it lies between) and splits it.
     ///   Dormant crease samples attach to the nearest vertex of any kind (the spec: of their
     ///   own polyline).
-    /// - Crease edges are no folds for the monitors, and the advancing-front rebuild is never
-    ///   used (it would lose the creases); the diametric-ball diagnostic counts a vertex only
-    ///   for the triangles of its own patches.
+    /// - Crease edges are no folds for the monitors; the diametric-ball diagnostic counts a
+    ///   vertex only for the triangles of its own patches.
     /// check_invariants() checks that every polyline's vertices are joined by crease edges and
     /// the corners keep theirs; the spacing invariant does not count a pair of corners. Without a reference or a given mesh it does nothing. 180 (the
     /// default) = off.
@@ -193,11 +192,11 @@ enum class Violation {
     /// A diametric ball holds a vertex once an update's (or the initialisation's) global flips
     /// are done (DeformOptions::verify_balls), or a flip loop stopped at its cap.
     NonEmptyBall,
-    Rebuild,                    ///< the mesh was rebuilt from scratch to recover
-    /// A rebuild was undone: its result was not a closed manifold with the Euler
-    /// characteristic and components of Tri(0) (or the reconstruction failed); the mesh from
-    /// before the rebuild is kept.
-    TopologyRollback,
+    /// Not raised any more: an update never rebuilds the mesh from scratch (spec §10.4; a fold
+    /// or an intersection goes through the unit redo of advance() and, failing that, is
+    /// reported). The kind, like TopologyRollback, stays for the reports' stable keys.
+    Rebuild,
+    TopologyRollback,  ///< not raised any more (see Rebuild)
     Coarsened,                  ///< one update raised R by more than 2x (e.g. a hole was cut)
     /// Tri(0) on the reference mesh had to decimate the reference (no restricted Delaunay
     /// triangulation with its topology; the detail says where).
@@ -225,8 +224,8 @@ struct UpdateCounters {
     std::size_t spacing_repairs = 0;  ///< updates that ran the spacing repair (spec §9 P7)
     std::size_t samples_inserted = 0;  ///< user insertions applied
     std::size_t samples_deleted = 0;   ///< user deletions applied
-    std::size_t rebuilds = 0;          ///< rebuilds from scratch installed
-    std::size_t rollbacks = 0;         ///< rebuilds undone (Violation::TopologyRollback)
+    std::size_t rebuilds = 0;          ///< always 0 (see Violation::Rebuild); kept for the reports
+    std::size_t rollbacks = 0;         ///< always 0 (see Violation::Rebuild); kept for the reports
     std::size_t distance_evals = 0;
     double seconds = 0;
     UpdateCounters& operator+=(const UpdateCounters& o);

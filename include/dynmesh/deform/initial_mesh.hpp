@@ -25,6 +25,10 @@ struct ReferenceMeshOptions {
     /// kLockedEdges), which path A keeps as mesh edges (remove_point() collapses a vertex
     /// along its chain) and path B does not know.
     bool decimate_first = false;
+    /// A local size per sample (same indexing as the samples; empty: none): in step 2 a
+    /// sample joins when it is farther than min(R, size) / 3 from the vertices, so parts
+    /// thinner than the global R are resolved on the reference, before any Add.
+    std::span<const double> size;
 };
 
 enum class ReferenceMeshPath {

@@ -115,8 +115,8 @@ struct DeformRunReport {
     std::map<std::string, std::size_t> violations;  ///< by kind
     /// The first kViolationExamples records of every kind (t = 0: initialisation), by time.
     std::vector<ViolationRecord> violation_examples;
-    /// Rebuilds installed, and rebuilds undone because their result had another topology
-    /// than Tri(0) or the reconstruction failed (Violation::TopologyRollback).
+    /// Always 0 since updates never rebuild from scratch (Violation::Rebuild); kept so that
+    /// scripts reading the report find them.
     std::size_t rebuilds = 0, rollbacks = 0;
     std::size_t flip_refusals = 0;  ///< flips refused by the circumradius guard (spec §9 P9)
     /// First time unit with a self-intersection / an inverted triangle (-1: none).
@@ -147,8 +147,7 @@ enum class CheckLevel {
     /// of check_invariants() (needs DeformRunOptions::check_invariants; t = 0 included):
     /// closed oriented manifold with Tri(0)'s Euler characteristic and components, dormant
     /// lists, radius-edge <= 3, spacing >= R/3, dormant points within 5R/4; no
-    /// self-intersection and no inverted triangle at any measured time unit; no rebuild
-    /// rolled back (Violation::TopologyRollback).
+    /// self-intersection and no inverted triangle at any measured time unit.
     Invariants,
     /// `--check=strict`: also the paper's Delaunay property and model: no diametric ball
     /// holding a vertex after any update (t = 0 included), and none of the monitors and
