@@ -320,7 +320,8 @@ void register_deform(CLI::App& root, int& result) {
         ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
     sub->add_option("--size-factor", args->size_factor,
                     "Local size field: a sample's size is min(R, F * local feature size) in place of the global R "
-                    "(thin parts get vertices across them; 0: off, the paper's global R)")
+                    "(thin parts get vertices across them; 0: off, the paper's global R; the analytic scenarios, "
+                    "whose features are all thicker than R, run as with 0)")
         ->capture_default_str()
         ->check(finite_number())
         ->check(CLI::NonNegativeNumber);

@@ -280,7 +280,12 @@ void run_cube(const Warp& warp, int T, CubeRun& out, bool init_refine = true) {
     o.lambda = 0.1;
     o.feature_angle_deg = 45;
     o.init_refine = init_refine;
-    if (!init_refine) o.h0 = 0.3;  // a coarse net, the other samples dormant
+    if (!init_refine) {
+        o.h0 = 0.3;  // a coarse net, the other samples dormant
+        // The global R: the size field (small next to the sharp edges) would make the net
+        // dense along the creases at once.
+        o.size_factor = 0;
+    }
     InitialSurface init;
     init.reference = &cube;
     DeformingMesh dm(p0, o, init);

@@ -109,12 +109,15 @@ struct DeformOptions {
     /// InitialSurface::surface. r replaces R in RefineVert's R/3 (promotion and placing), the
     /// Decimation and spacing-repair radii and the spacing invariant, and sets each pair's
     /// sub-step budget 2 r / kappa; samples inserted later take r(w) + grading |p - w| from
-    /// their nearest vertex w. Where size_factor lfs >= R everywhere the run is the paper's.
-    /// 0 (the default) turns it off. About 9 vertices around a circular section at 0.4 (the
-    /// spec's value). Opt-in for now: on armadillo.off the refinement it causes at t = 0
-    /// leaves 2 self-intersecting triangle pairs and on spot.obj and fandisk.off diametric
-    /// balls holding a vertex (the Add of §4.4 near thin parts), which --check reports.
-    double size_factor = 0.0;
+    /// their nearest vertex w. Where size_factor lfs >= R everywhere the run is the paper's
+    /// (the analytic scenarios). About 9 vertices around a circular section at 0.4, the spec's
+    /// value and the default; 0 turns it off (the paper's global R). With a reference mesh
+    /// the net and RefineVert's fixed point on the reference follow r, so thin parts are
+    /// resolved in Tri(0) before any Add. r has no floor: where a part is thinner than the
+    /// samples are dense, every sample there becomes a vertex and the triangles are as good as
+    /// the samples allow (a floor at twice the sample spacing was tried and made more runs
+    /// fail: the spacing repair then thins such parts).
+    double size_factor = 0.4;
     /// Lipschitz constant of the size along the surface (>= 0).
     double grading = 0.3;
     /// Creases (spec §10.3; not in the paper): at t = 0, the edges of InitialSurface::
