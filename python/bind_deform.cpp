@@ -128,7 +128,8 @@ void bind_deform(py::module_& m) {
              "without it the mesh is reconstructed from the samples, which must then be dense).\n"
              "max_substeps: advance() cuts a time unit into at most this many sub-steps when the\n"
              "samples move faster than the schedule allows (1: off).\n"
-             "size_factor: a sample's size is min(R, size_factor * local feature size) (0: off).\n"
+             "size_factor: a sample's size is min(R, size_factor * local feature size) (default 0.4;\n"
+             "0: off, the global R of the paper).\n"
              "feature_angle_deg: edges of the reference sharper than this (180 - dihedral) are creases,\n"
              "kept as mesh-edge chains through the motion (180: off).")
         .def(
