@@ -357,10 +357,9 @@ void register_deform(CLI::App& root, int& result) {
     sub->add_flag("--check{invariants}", args->check,
                   "--check (= invariants): after every update (and at t = 0) the mesh is closed "
                   "with Tri(0)'s topology, radius-edge <= 3, spacing >= R/3, dormant lists "
-                  "valid; no self-intersection, inverted triangle or rolled-back rebuild. "
+                  "valid; no self-intersection or inverted triangle. "
                   "--check=strict: also no non-empty diametric ball and no monitor or "
-                  "diagnostic of any kind (step_too_short, refused folds, rebuilds, "
-                  "coarsening, ...). Exit 1 on any failure, listed in the report's "
+                  "diagnostic of any kind (step_too_short, refused folds, coarsening, ...). Exit 1 on any failure, listed in the report's "
                   "check_failures")
         ->check(CLI::IsMember({"invariants", "on", "strict"}));
     add_common_options(*sub, args->common);

@@ -137,7 +137,6 @@ struct DeformingMesh::Impl {
     std::size_t n_updates = 0;
     bool emergency_requested = false;
     std::size_t folded_at_step = 0;
-    std::size_t folded_now = 0;  ///< as measured by the last advance()  ///< edges with edge-angle <= 90 at the end of the last update
     std::size_t live = 0;
 
     /// Samples whose Add was refused during the current update (far from the mesh, on a
@@ -154,6 +153,9 @@ struct DeformingMesh::Impl {
     /// The last global flip converged and the mesh has changed since only by Add and Remove,
     /// which flip locally from every edge they touch (Lawson propagation): a global flip
     /// would find nothing to do. Cleared when the vertices move or a mesh is installed.
+    /// (Not quite: an edge refused as DiagonalExists can become flippable when a local flip
+    /// elsewhere removes that diagonal, and only a global flip would see it; rare, and the
+    /// ball diagnostic reports any ball it leaves non-empty.)
     bool flips_settled = false;
 
     /// Creases (spec §10.3; DeformOptions::feature_angle_deg): the polylines of crease
@@ -1168,7 +1170,7 @@ struct DeformingMesh::Impl {
         strain_d.assign(pos.size(), 0.0);
         std::fill(vert_of.begin(), vert_of.end(), Vertex());
         for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
-        folded_at_step = folded_now = folded_edges();
+        folded_at_step = folded_edges();
         ref_normals.assign(mesh.faces_size(), Vec3{});
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
@@ -1643,7 +1645,6 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
         trip = true;
     }
     const std::size_t folded = I.folded_edges();
-    I.folded_now = folded;
     if (folded > I.folded_at_step) {
         I.violation(Violation::EdgeAngleBelow90, std::to_string(folded) + " edges with an edge-angle <= 90 degrees (" +
                                                      std::to_string(I.folded_at_step) + " at the last step)");

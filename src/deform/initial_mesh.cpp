@@ -36,6 +36,8 @@ void refine_to_fixed_point(std::span<const Point3> samples, const SurfaceMesh& r
                            MeshRestrictedDelaunayOptions ro, const ReferenceMeshOptions& options,
                            MeshRestrictedDelaunayResult& r, ReferenceMesh& out) {
     ro.throw_on_failure = false;
+    DYNMESH_CHECK(options.size.empty() || options.size.size() == samples.size(),
+                  "initial_mesh_on_reference: one size per sample");
     std::vector<char> blocked(samples.size(), 0);
     auto at = [&](std::uint32_t x) { return samples[x]; };
     for (std::size_t round = 0; round < options.max_refine_rounds; ++round) {

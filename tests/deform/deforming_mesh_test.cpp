@@ -9,7 +9,10 @@
 #include <numeric>
 
 #include "dynmesh/deform/deforming_mesh.hpp"
+#include "dynmesh/deform/run.hpp"
+#include "dynmesh/deform/scenario.hpp"
 #include "dynmesh/error.hpp"
+#include "dynmesh/flips/flip_smooth.hpp"
 #include "dynmesh/geometry/point_grid.hpp"
 #include "dynmesh/geometry/random.hpp"
 #include "dynmesh/geometry/triangle.hpp"
@@ -368,6 +371,53 @@ TEST(DeformMonitors, InvertedTrianglesAreDetectedAndRepairedWithoutARebuild) {
         const Vec3 a = triangle_normal_raw(m.position(n0[0]), m.position(n0[1]), m.position(n0[2]));
         const Vec3 b = triangle_normal_raw(m.position(n1[0]), m.position(n1[1]), m.position(n1[2]));
         ASSERT_GT(dot(a, b), 0.0) << "folded edge " << e.idx();
+    }
+}
+
+TEST(DeformUpdate, LeavesNoEdgeForTheGlobalFlip) {
+    // An update skips the global flip when the last one settled and only Adds and Removes
+    // (which flip locally) changed the mesh since; the mesh it ends with must still have no
+    // edge that the diametric-ball flip would take, after motion as after refinement.
+    const auto P0 = sphere_samples(2500, 17);
+    DeformOptions params;
+    params.lambda = 0.01;
+    DeformingMesh dm(P0, params, {.surface = nullptr});
+    std::size_t checked = 0, changes = 0;
+    for (int t = 1; t <= 12; ++t) {
+        dm.advance(t, stretched(P0, 1 + 0.05 * t));
+        const DeformUpdateReport u = dm.update();
+        changes += u.counters.insertions + u.counters.removals;
+        SurfaceMesh copy = dm.mesh();
+        FlipOptions fo;
+        fo.rule = FlipRule::DiametricBall;
+        EXPECT_EQ(flip_all(copy, fo).flips, 0u) << "t = " << t;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 12u);
+    EXPECT_GT(changes, 0u);  // the stretch refined: Adds ran between global flips
+}
+
+TEST(DeformSizeField, TheAnalyticScenariosRunAsWithTheGlobalR) {
+    // Their features are all thicker than R (0.4 lfs >= R), so the default size field changes
+    // nothing: the same updates and changes as the paper's global R.
+    for (const char* name : {"stretch", "dimple", "bend"}) {
+        ScenarioOptions so;
+        so.samples = 1500;
+        so.steps = 60;
+        const Scenario s = make_scenario(name, so);
+        DeformRunOptions ro;
+        ro.measure_every = 0;
+        ro.measure.self_intersections = false;
+        ASSERT_GT(ro.params.size_factor, 0.0);
+        const DeformRunReport with = run_deform(s, ro);
+        ro.params.size_factor = 0;
+        const DeformRunReport without = run_deform(s, ro);
+        EXPECT_EQ(with.updates, without.updates) << name;
+        EXPECT_EQ(with.flips, without.flips) << name;
+        EXPECT_EQ(with.insertions, without.insertions) << name;
+        EXPECT_EQ(with.removals, without.removals) << name;
+        EXPECT_EQ(with.init_vertices, without.init_vertices) << name;
+        EXPECT_GT(with.flips + with.insertions + with.removals, 0u) << name;
     }
 }
 

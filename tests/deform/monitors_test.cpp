@@ -22,7 +22,7 @@ std::size_t count_kind(const std::vector<ViolationRecord>& v, const std::string&
         v.begin(), v.end(), [&](const ViolationRecord& r) { return std::string(to_string(r.kind)) == kind; }));
 }
 
-TEST(DeformRollback, ElephantBendKeepsItsEulerCharacteristicWithoutARebuild) {
+TEST(DeformMonitors, ElephantBendKeepsItsEulerCharacteristicWithoutARebuild) {
     // The bend of `dynmesh deform elephant.off` at 8x the default speed (steps 50): its
     // emergency rebuild from the advancing front once changed the Euler characteristic
     // -4 -> -6 at t = 7 and the run carried on; later such rebuilds were rolled back. The

@@ -53,7 +53,7 @@ struct ReferenceMesh {
 /// 1. B: restricted_delaunay_on_mesh(samples, net, reference) with diametric-ball refinement
 ///    and samples added for the balls kept R/3 away from the net.
 /// 2. With options.refine, RefineVert's fixed point on the vertex set: every sample farther
-///    than R/3 from the vertices (R = largest circumradius) joins them, in index order, each
+///    than min(R, options.size)/3 from the vertices (R = largest circumradius) joins them, in index order, each
 ///    new one counting for the next, and step 1 is redone on the larger net; until at most
 ///    1 % more samples would join (those are left to RefineVert's Add). When the larger net has no triangulation with the reference's topology
 ///    (creases, parts thinner than the net spacing), the samples that would join within 3R of

@@ -130,8 +130,8 @@ struct DeformRunReport {
     std::size_t crease_edges = 0, crease_lines = 0, corners = 0;  ///< InitReport's
     long long euler = 0;
     /// Events to show even without --check, one line each with its time unit: every update
-    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger), every
-    /// rollback, and a Tri(0) built by decimating the input mesh (t = 0); at most
+    /// that coarsened the mesh (R more than kCoarseningWarningFactor times larger) and a
+    /// Tri(0) built by decimating the input mesh (t = 0); at most
     /// kMaxWarnings lines, then one line counting the rest.
     std::vector<std::string> warnings;
     std::vector<DeformLogRow> log;
