@@ -395,21 +395,30 @@ struct DeformingMesh::Impl {
     /// The nearest vertices (samples) of crease sample p's polyline on either side of it
     /// (kNoSample where there is none).
     [[nodiscard]] std::pair<SampleId, SampleId> crease_neighbours(SampleId p) const {
-        const auto& line = lines[crease_line[p]];
-        const bool closed = line_closed[crease_line[p]] != 0;
-        const auto n = static_cast<std::ptrdiff_t>(line.size());
-        auto vertex_from = [&](std::ptrdiff_t step) -> SampleId {
-            std::ptrdiff_t i = static_cast<std::ptrdiff_t>(crease_rank[p]);
-            for (std::ptrdiff_t k = 0; k < n; ++k) {
-                i += step;
-                if (closed) i = (i + n) % n;
-                if (i < 0 || i >= n) return kNoSample;
-                const SampleId x = line[static_cast<std::size_t>(i)];
-                if (x != p && state[x] == State::Vertex) return x;
-            }
-            return kNoSample;
+        const std::uint32_t c = crease_line[p];
+        auto vertex_from = [&](std::ptrdiff_t step) {
+            const std::ptrdiff_t i = next_line_vertex(c, static_cast<std::ptrdiff_t>(crease_rank[p]), step, p);
+            return i < 0 ? kNoSample : lines[c][static_cast<std::size_t>(i)];
         };
         return {vertex_from(-1), vertex_from(+1)};
+    }
+    /// Walking polyline c from index i by `step` (+1 or -1; around a closed line), the index
+    /// of the first vertex other than `skip`, or -1 at the line's end; `passed` (when given)
+    /// receives the indices of the samples walked over before it.
+    [[nodiscard]] std::ptrdiff_t next_line_vertex(std::uint32_t c, std::ptrdiff_t i, std::ptrdiff_t step,
+                                                  SampleId skip = kNoSample,
+                                                  std::vector<std::ptrdiff_t>* passed = nullptr) const {
+        const auto& line = lines[c];
+        const auto n = static_cast<std::ptrdiff_t>(line.size());
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            i += step;
+            if (line_closed[c]) i = (i + n) % n;
+            if (i < 0 || i >= n) return -1;
+            const SampleId x = line[static_cast<std::size_t>(i)];
+            if (x != skip && state[x] == State::Vertex) return i;
+            if (passed) passed->push_back(i);
+        }
+        return -1;
     }
     /// Patch of every face: the components of the faces joined across edges that are no
     /// crease (empty without creases).
@@ -479,26 +488,14 @@ struct DeformingMesh::Impl {
             for (std::ptrdiff_t ia = 0; ia < n; ++ia) {
                 if (line[static_cast<std::size_t>(ia)] != a) continue;
                 for (const std::ptrdiff_t step : {std::ptrdiff_t{1}, std::ptrdiff_t{-1}}) {
-                    // Walk from a to the next vertex of the line; it must be b.
+                    // The next vertex of the line from a must be b.
                     std::vector<std::ptrdiff_t> between;
-                    std::ptrdiff_t i = ia;
-                    bool found = false;
-                    for (std::ptrdiff_t k = 0; k < n; ++k) {
-                        i += step;
-                        if (line_closed[c]) i = (i + n) % n;
-                        if (i < 0 || i >= n) break;
-                        const SampleId x = line[static_cast<std::size_t>(i)];
-                        if (state[x] == State::Vertex) {
-                            found = x == b;
-                            break;
-                        }
-                        between.push_back(i);
-                    }
-                    if (!found) continue;
+                    const std::ptrdiff_t j = next_line_vertex(c, ia, step, kNoSample, &between);
+                    if (j < 0 || line[static_cast<std::size_t>(j)] != b) continue;
                     const double tp = segment_parameter(P(p), P(a), P(b));
                     std::ptrdiff_t after = ia;  // p goes right after this index, walking by step
-                    for (std::ptrdiff_t j : between)
-                        if (segment_parameter(P(line[static_cast<std::size_t>(j)]), P(a), P(b)) < tp) after = j;
+                    for (std::ptrdiff_t q : between)
+                        if (segment_parameter(P(line[static_cast<std::size_t>(q)]), P(a), P(b)) < tp) after = q;
                     const std::ptrdiff_t at = step > 0 ? after + 1 : after;  // vector position
                     line.insert(line.begin() + at, p);
                     crease_line[p] = c;
