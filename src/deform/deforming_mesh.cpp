@@ -263,9 +263,11 @@ struct DeformingMesh::Impl {
     }
     /// Grid of the current vertices (ids = sample ids), cell grid_cell(cell).
     PointGrid vertex_grid(double cell) const {
-        PointGrid g(grid_cell(cell));
-        for (Vertex v : mesh.vertices()) g.insert(sid(v), mesh.position(v));
-        return g;
+        std::vector<Vertex> vs;
+        vs.reserve(mesh.n_vertices());
+        for (Vertex v : mesh.vertices()) vs.push_back(v);
+        return PointGrid::bulk(grid_cell(cell), vs.size(), [&](std::size_t k) { return mesh.position(vs[k]); },
+                               [&](std::size_t k) { return sid(vs[k]); });
     }
 
     /// The face nearest to p, among the faces around vertices within search radius r

@@ -93,8 +93,7 @@ void expect_queries_exact(const PointGrid& g, const std::vector<Point3>& pts,
 
 TEST(PointGrid, BulkAndDynamicGridsAnswerExactly) {
     Rng rng(7);
-    // Near the origin, and far from it in small cells (cell coordinates ~1e9: beyond what a
-    // dynamic grid keys exactly, merged into its outermost cells, still correct).
+    // Near the origin, and far from it in small cells (cell coordinates ~1e9).
     for (const auto& [center, size] : {std::pair{Point3{0, 0, 0}, 2.0}, std::pair{Point3{1e6, -2e6, 5e5}, 1.0}}) {
         const std::vector<Point3> pts = cloud(rng, 2000, center, size);
         const double cell = 0.03 * size;
@@ -118,10 +117,24 @@ TEST(PointGrid, BulkAndDynamicGridsAnswerExactly) {
         }
         EXPECT_FALSE(d.is_static());
         expect_queries_exact(d, pts, some, center, size, rng);
+
+        // A bulk grid of the first half, changed into the same set: the erased ids leave their
+        // bulk cells, the second half goes in as inserted ids.
+        std::vector<std::uint32_t> half(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2));
+        PointGrid m = PointGrid::bulk(cell, pts, half);
+        for (std::uint32_t i = static_cast<std::uint32_t>(half.size()); i < pts.size(); ++i) m.insert(i, pts[i]);
+        for (std::uint32_t i : all)
+            if (mix64(i) % 3 == 0) {
+                ASSERT_TRUE(m.erase(i, pts[i]));
+                ASSERT_FALSE(m.erase(i, pts[i]));
+            }
+        EXPECT_TRUE(m.is_static());
+        EXPECT_EQ(m.size(), some.size());
+        expect_queries_exact(m, pts, some, center, size, rng);
     }
 }
 
-TEST(PointGrid, EmptyGridsAndFrozenBulkGrids) {
+TEST(PointGrid, EmptyGridsAndResets) {
     auto pos = [](std::uint32_t) { return Point3{0, 0, 0}; };
     auto any = [](std::uint32_t) { return true; };
     const PointGrid e = PointGrid::bulk(1.0, std::vector<Point3>{});
@@ -132,9 +145,11 @@ TEST(PointGrid, EmptyGridsAndFrozenBulkGrids) {
 
     const std::vector<Point3> one{{1, 2, 3}};
     PointGrid g = PointGrid::bulk(0.5, one);
-    EXPECT_THROW(g.insert(1, {0, 0, 0}), InvalidInput);
-    EXPECT_THROW((void)g.erase(0, one[0]), InvalidInput);
-    g.reset(0.5);  // dynamic again
+    EXPECT_FALSE(g.erase(0, Point3{9, 9, 9}));  // not where it was put
+    EXPECT_TRUE(g.erase(0, one[0]));
+    EXPECT_EQ(g.size(), 0u);
+    EXPECT_EQ(g.nearest_sq({0, 0, 0}, PointGrid::positions(one), any).first, PointGrid::kNone);
+    g.reset(0.5);  // empty, no bulk table
     EXPECT_FALSE(g.is_static());
     g.insert(0, one[0]);
     EXPECT_EQ(g.size(), 1u);

@@ -2,22 +2,27 @@
 /// \file PointGrid: a uniform hash grid over ids with 3D positions, for fixed-radius and
 /// nearest-neighbour queries in expected O(1) per query when the points are well spaced
 /// relative to the cell size (the deforming-mesh paper's "uniform grid", §4.6, with a hash
-/// map in place of the radix sort).
+/// table in place of the radix sort).
 ///
 /// Two ways to fill it, one set of queries:
-/// - dynamic: PointGrid(cell), then insert() and erase() in any order;
-/// - static: PointGrid::bulk(cell, points[, ids]) buckets every point at once (two linear
-///   passes into one array, each cell's ids contiguous); it cannot change afterwards, and it
-///   takes cell coordinates of any magnitude.
+/// - bulk: PointGrid::bulk(cell, points[, ids]) buckets every point at once (two linear
+///   passes into one open-addressing table of cells over one array, each cell's ids
+///   contiguous): the fast way to index a set known in advance;
+/// - dynamic: insert() and erase() in any order, on an empty PointGrid(cell) or on a bulk
+///   grid (an erased id leaves its cell's range; an inserted one goes to a hash map of
+///   extra cells, looked up after the bulk cells).
+/// Cell coordinates are kept whole (clamped to +-4e15, where doubles are still exact
+/// integers; clamping merges the outermost cells and never loses a point).
 /// The grid stores ids only: queries that measure distances take `pos(id)`, the position of
 /// an id (the position it was inserted at).
 ///
 /// Usage
 /// \code
-///   const PointGrid g = PointGrid::bulk(h, pts);               // ids 0 .. pts.size() - 1
+///   PointGrid g = PointGrid::bulk(h, pts);                     // ids 0 .. pts.size() - 1
 ///   const auto pos = PointGrid::positions(pts);                 // pos(i) = pts[i]
 ///   g.for_each_within(q, r, pos, [&](std::uint32_t id, double d2) { ... });
 ///   const auto [id, d] = g.nearest(q, pos, [](std::uint32_t) { return true; });
+///   g.erase(3, pts[3]);                                          // and insert(id, p)
 /// \endcode
 
 #include <algorithm>
@@ -58,19 +63,25 @@ public:
                 [&](std::size_t k) { return ids[k]; });
         return g;
     }
+    /// A bulk grid of n ids: id(k) at at(k), k = 0 .. n - 1 (ids need not be dense).
+    template <class At, class Id>
+    [[nodiscard]] static PointGrid bulk(double cell, std::size_t n, At&& at, Id&& id) {
+        PointGrid g(cell);
+        g.build(n, at, id);
+        return g;
+    }
 
     /// pos(id) = points[id]: the `pos` of the queries below for positions held in an array.
     [[nodiscard]] static auto positions(std::span<const Point3> points) {
         return [points](std::uint32_t id) -> const Point3& { return points[id]; };
     }
 
-    /// Empties the grid (dynamic again) and sets a new cell size.
+    /// Empties the grid and sets a new cell size.
     void reset(double cell) {
         DYNMESH_CHECK(std::isfinite(cell) && cell > 0, "PointGrid: the cell size must be positive and finite");
         cell_ = cell;
         inv_ = 1.0 / cell;
-        limit_ = kDynamicLimit;
-        cells_.clear();
+        extra_.clear();
         std::fill(occupied_.begin(), occupied_.end(), 0);
         table_.clear();
         ids_.clear();
@@ -80,29 +91,38 @@ public:
     }
     [[nodiscard]] double cell() const { return cell_; }
     [[nodiscard]] std::size_t size() const { return size_; }
-    /// True for a grid made by bulk() (no insert or erase).
+    /// True for a grid made by bulk() (its ids are in the bulk table, plus any inserted since).
     [[nodiscard]] bool is_static() const { return !table_.empty(); }
 
-    /// \pre a dynamic grid.
+    /// Adds id at p (the same id may be added twice, at two places).
     void insert(std::uint32_t id, const Point3& p) {
-        DYNMESH_CHECK(!is_static(), "PointGrid::insert: a grid made by bulk() cannot change");
-        const Key k = key(p);
-        cells_[k].push_back(id);
+        const CellKey k = key(p);
+        extra_[k].push_back(id);
         mark(k);
         ++size_;
     }
     /// Removes id, which must have been inserted at p. Returns false when it is not there.
-    /// \pre a dynamic grid.
     bool erase(std::uint32_t id, const Point3& p) {
-        DYNMESH_CHECK(!is_static(), "PointGrid::erase: a grid made by bulk() cannot change");
-        auto it = cells_.find(key(p));
-        if (it == cells_.end()) return false;
+        const CellKey k = key(p);
+        if (!table_.empty()) {
+            Cell& c = table_[slot(k)];
+            if (c.begin != kNone)
+                for (std::uint32_t i = c.begin; i < c.end; ++i)
+                    if (ids_[i] == id) {
+                        ids_[i] = ids_[--c.end];
+                        --size_;
+                        return true;
+                    }
+        }
+        if (extra_.empty() || !maybe_occupied(k)) return false;
+        auto it = extra_.find(k);
+        if (it == extra_.end()) return false;
         auto& v = it->second;
         for (std::size_t i = 0; i < v.size(); ++i)
             if (v[i] == id) {
                 v[i] = v.back();
                 v.pop_back();
-                if (v.empty()) cells_.erase(it);
+                if (v.empty()) extra_.erase(it);
                 --size_;
                 return true;
             }
@@ -190,23 +210,24 @@ public:
     }
 
 private:
-    using Key = std::uint64_t;
+    struct CellKey {
+        std::int64_t x = 0, y = 0, z = 0;
+        friend bool operator==(const CellKey&, const CellKey&) = default;
+    };
+    struct CellKeyHash {
+        std::size_t operator()(const CellKey& k) const noexcept {
+            return static_cast<std::size_t>(hash_ints(k.x, k.y, k.z));
+        }
+    };
 
     // ---- cell coordinates ------------------------------------------------------------------
-    // A dynamic grid packs its cell coordinates into one 64-bit key, so they are clamped to
-    // +-1e6; a static grid keeps them whole (clamped to +-4e15, where doubles are still exact
-    // integers). Clamping merges the outermost cells and never loses a point.
-    static constexpr double kDynamicLimit = 1e6, kStaticLimit = 4e15;
+    /// Clamped to +-4e15, where doubles are still exact integers.
+    static constexpr double kLimit = 4e15;
     [[nodiscard]] std::int64_t coord(double x) const {
-        return static_cast<std::int64_t>(std::clamp(std::floor(x * inv_), -limit_, limit_));
+        return static_cast<std::int64_t>(std::clamp(std::floor(x * inv_), -kLimit, kLimit));
     }
-    static Key pack(std::int64_t x, std::int64_t y, std::int64_t z) {
-        constexpr std::int64_t off = 1 << 20;
-        return (static_cast<Key>(x + off) << 42) | (static_cast<Key>(y + off) << 21) |
-               static_cast<Key>(z + off);
-    }
-    [[nodiscard]] Key key(const Point3& p) const { return pack(coord(p.x), coord(p.y), coord(p.z)); }
-    [[nodiscard]] std::size_t n_cells() const { return is_static() ? n_cells_ : cells_.size(); }
+    [[nodiscard]] CellKey key(const Point3& p) const { return {coord(p.x), coord(p.y), coord(p.z)}; }
+    [[nodiscard]] std::size_t n_cells() const { return n_cells_ + extra_.size(); }
 
     // ---- visiting ids; f(id) returns true to stop -------------------------------------------
     /// The ids of every cell meeting the cube of half-width r around p, cell by cell in
@@ -226,20 +247,19 @@ private:
                     if (visit_cell(x, y, z, f)) return true;
         return false;
     }
-    /// The ids of the cell (x, y, z), in the order they came.
+    /// The ids of the cell (x, y, z): its bulk ids, then those inserted since.
     template <class F>
     bool visit_cell(std::int64_t x, std::int64_t y, std::int64_t z, F&& f) const {
-        if (is_static()) {
-            const Cell* c = find(x, y, z);
-            if (c == nullptr) return false;
-            for (std::uint32_t k = c->begin; k < c->end; ++k)
-                if (f(ids_[k])) return true;
-            return false;
+        const CellKey k{x, y, z};
+        if (!table_.empty()) {
+            const Cell& c = table_[slot(k)];
+            if (c.begin != kNone)
+                for (std::uint32_t i = c.begin; i < c.end; ++i)
+                    if (f(ids_[i])) return true;
         }
-        const Key k = pack(x, y, z);
-        if (!maybe_occupied(k)) return false;  // most cells of a query are empty
-        const auto it = cells_.find(k);
-        if (it == cells_.end()) return false;
+        if (extra_.empty() || !maybe_occupied(k)) return false;  // most cells of a query are empty
+        const auto it = extra_.find(k);
+        if (it == extra_.end()) return false;
         for (std::uint32_t id : it->second)
             if (f(id)) return true;
         return false;
@@ -247,38 +267,37 @@ private:
     /// Every id of the grid.
     template <class F>
     bool for_each_id(F&& f) const {
-        for (std::uint32_t id : ids_)
-            if (f(id)) return true;
-        for (const auto& [k, ids] : cells_)
+        for (const Cell& c : table_)
+            if (c.begin != kNone)
+                for (std::uint32_t i = c.begin; i < c.end; ++i)
+                    if (f(ids_[i])) return true;
+        for (const auto& [k, ids] : extra_)
             for (std::uint32_t id : ids)
                 if (f(id)) return true;
         return false;
     }
 
-    // ---- dynamic storage: a hash map of cells -----------------------------------------------
-    /// A one-hash Bloom filter of the occupied cells: a clear bit proves a cell empty without a
-    /// hash-map lookup. Erasing leaves bits set (they only cost a lookup); reset() clears them.
+    // ---- inserted ids: a hash map of extra cells ----------------------------------------------
+    /// A one-hash Bloom filter of the extra cells: a clear bit proves a cell has no inserted id
+    /// without a hash-map lookup. Erasing leaves bits set (they only cost a lookup); reset()
+    /// clears them.
     static constexpr std::size_t kFilterBits = std::size_t{1} << 15;
-    [[nodiscard]] static std::size_t filter_bit(Key k) { return mix64(k) & (kFilterBits - 1); }
-    void mark(Key k) { occupied_[filter_bit(k) >> 6] |= std::uint64_t{1} << (filter_bit(k) & 63); }
-    [[nodiscard]] bool maybe_occupied(Key k) const {
+    [[nodiscard]] static std::size_t filter_bit(const CellKey& k) { return hash_ints(k.x, k.y, k.z) & (kFilterBits - 1); }
+    void mark(const CellKey& k) { occupied_[filter_bit(k) >> 6] |= std::uint64_t{1} << (filter_bit(k) & 63); }
+    [[nodiscard]] bool maybe_occupied(const CellKey& k) const {
         return (occupied_[filter_bit(k) >> 6] >> (filter_bit(k) & 63)) & 1u;
     }
 
-    // ---- static storage: an open-addressing table of cells over one array of ids ------------
+    // ---- bulk storage: an open-addressing table of cells over one array of ids --------------
     struct Cell {
-        std::int64_t x = 0, y = 0, z = 0;
+        CellKey k;
         std::uint32_t begin = kNone, end = 0;  // ids_[begin, end); begin == kNone: a free slot
     };
-    [[nodiscard]] std::size_t slot(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        std::size_t i = static_cast<std::size_t>(hash_ints(x, y, z)) & mask_;
-        while (table_[i].begin != kNone && !(table_[i].x == x && table_[i].y == y && table_[i].z == z))
-            i = (i + 1) & mask_;
+    /// The slot of cell k in the table (a free slot when k has none). \pre a bulk table.
+    [[nodiscard]] std::size_t slot(const CellKey& k) const {
+        std::size_t i = static_cast<std::size_t>(hash_ints(k.x, k.y, k.z)) & mask_;
+        while (table_[i].begin != kNone && !(table_[i].k == k)) i = (i + 1) & mask_;
         return i;
-    }
-    [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        const Cell& c = table_[slot(x, y, z)];
-        return c.begin == kNone ? nullptr : &c;
     }
     /// Buckets n ids (id(k) at at(k)): a first pass counts the ids of each cell, a second
     /// places them, each cell's ids contiguous and in the order given.
@@ -289,15 +308,13 @@ private:
         while (slots < 2 * n) slots *= 2;
         table_.assign(slots, Cell{});
         mask_ = slots - 1;
-        limit_ = kStaticLimit;
         std::vector<std::uint32_t> where(n);  // the slot of each id's cell
         for (std::size_t k = 0; k < n; ++k) {
-            const Point3 p = at(k);
-            const std::int64_t x = coord(p.x), y = coord(p.y), z = coord(p.z);
-            const std::size_t s = slot(x, y, z);
+            const CellKey ck = key(at(k));
+            const std::size_t s = slot(ck);
             Cell& c = table_[s];
             if (c.begin == kNone) {
-                c = Cell{x, y, z, 0, 0};
+                c = Cell{ck, 0, 0};
                 ++n_cells_;
             }
             ++c.end;  // the count, for now
@@ -316,13 +333,12 @@ private:
     }
 
     double cell_ = 1, inv_ = 1;
-    double limit_ = kDynamicLimit;  // cell coordinates are clamped to +-limit_
     std::size_t size_ = 0;
-    std::size_t n_cells_ = 0;  // occupied cells (static grids; dynamic ones use cells_.size())
-    // dynamic
-    std::unordered_map<Key, std::vector<std::uint32_t>> cells_;
+    std::size_t n_cells_ = 0;  // cells of the bulk table
+    // inserted ids
+    std::unordered_map<CellKey, std::vector<std::uint32_t>, CellKeyHash> extra_;
     std::vector<std::uint64_t> occupied_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);
-    // static
+    // bulk
     std::vector<Cell> table_;
     std::size_t mask_ = 0;
     std::vector<std::uint32_t> ids_;
