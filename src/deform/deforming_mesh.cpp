@@ -936,9 +936,11 @@ struct DeformingMesh::Impl {
         for (SampleId v : vs)
             if (black[v]) blacks.push_back(v);
         if (blacks.empty()) return 0;
-        PointGrid white(grid_cell(R));
+        std::vector<SampleId> whites;
+        whites.reserve(vs.size() - blacks.size());
         for (SampleId v : vs)
-            if (!black[v]) white.insert(v, P(v));
+            if (!black[v]) whites.push_back(v);
+        const PointGrid white = PointGrid::bulk(grid_cell(R), pos, whites);
         auto posf = [&](std::uint32_t s) { return P(s); };
         std::size_t removed = 0;
         for (SampleId u : blacks) {
@@ -951,7 +953,6 @@ struct DeformingMesh::Impl {
                 continue;
             }
             ++removed;
-            std::fill(refused.begin(), refused.end(), 0);  // the mesh changed around the refusals
             moving.push_back(u);
             for (SampleId p : moving) {
                 const auto [w, d] = white.nearest(P(p), posf, [](std::uint32_t) { return true; });
@@ -959,6 +960,7 @@ struct DeformingMesh::Impl {
                 attach(p, w);
             }
         }
+        if (removed > 0) std::fill(refused.begin(), refused.end(), 0);  // the mesh changed around the refusals
         return removed;
     }
 
