@@ -34,6 +34,7 @@ struct DeformArgs {
     std::string schedule = "paper";
     double kappa = kPracticalKappa;
     std::size_t max_substeps = DeformOptions{}.max_substeps;
+    std::string substep_updates = "local";
     double size_factor = DeformOptions{}.size_factor;
     double feature_angle = DeformOptions{}.feature_angle_deg;
     std::uint64_t seed = 1;
@@ -206,6 +207,7 @@ void run_deform_cmd(const DeformArgs& a, RunContext& ctx) {
     ro.schedule = schedule;
     ro.params.kappa = a.kappa;
     ro.params.max_substeps = a.max_substeps;
+    ro.params.local_updates = a.substep_updates == "local";
     ro.params.size_factor = a.size_factor;
     ro.params.feature_angle_deg = a.feature_angle;
     ro.params.seed = a.seed;
@@ -318,6 +320,11 @@ void register_deform(CLI::App& root, int& result) {
                     "neighbours than 2R/kappa between updates (1: off, the paper's schedule alone)")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
+    sub->add_option("--substep-updates", args->substep_updates,
+                    "Updates between sub-steps: local (on the pairs over their budget and their 2-ring) or global "
+                    "(the whole mesh)")
+        ->check(CLI::IsMember({"local", "global"}))
+        ->capture_default_str();
     sub->add_option("--size-factor", args->size_factor,
                     "Local size field: a sample's size is min(R, F * local feature size) in place of the global R "
                     "(thin parts get vertices across them; 0: off, the paper's global R; the analytic scenarios, "

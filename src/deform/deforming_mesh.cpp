@@ -218,6 +218,7 @@ struct DeformingMesh::Impl {
     }
 
     void attach(SampleId p, SampleId w) {
+        if (p < strain_d.size()) strain_d[p] = 0;  // a new pair
         state[p] = State::Dormant;
         owner[p] = w;
         dpos[p] = static_cast<std::uint32_t>(dl[w].size());
@@ -233,6 +234,10 @@ struct DeformingMesh::Impl {
         owner[p] = kNoSample;
     }
     void make_vertex(SampleId s, Vertex v) {
+        if (!region.empty() && !region[s]) {  // a local update's new vertex is in its region
+            region[s] = 1;
+            region_ids.push_back(s);
+        }
         state[s] = State::Vertex;
         owner[s] = kNoSample;
         vert_of[s] = v;
@@ -637,18 +642,32 @@ struct DeformingMesh::Impl {
     /// The global flip of §4.3 (its cap, when hit, is reported at once; the emptiness of the
     /// balls is checked by report_balls() on the mesh an update or the initialisation ends
     /// with).
+    /// In a local update (spec §10.1) the flips start from the edges around the region's
+    /// vertices only, and propagate from there.
     void global_flip() {
         if (flips_settled) return;
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
-        const auto edges = all_edges();
+        const auto edges = region.empty() ? all_edges() : region_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
         if (r.flips > 0) touch();
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
             violation(Violation::NonEmptyBall, "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
-        flips_settled = r.converged;
+        if (region.empty()) flips_settled = r.converged;
+    }
+    /// The edges with an end in the region (each once).
+    std::vector<Edge> region_edges() const {
+        std::vector<Edge> e;
+        for (SampleId s : region_ids) {
+            if (state[s] != State::Vertex) continue;
+            for (Halfedge h : mesh.outgoing_halfedges(vert_of[s])) {
+                const SampleId w = sid(mesh.to_vertex(h));
+                if (!region[w] || s < w) e.push_back(SurfaceMesh::edge(h));
+            }
+        }
+        return e;
     }
 
     /// §4.3: every diametric ball must be empty of vertices after the global flips (a grid
@@ -723,7 +742,16 @@ struct DeformingMesh::Impl {
             const double R = max_circumradius();
             std::vector<SampleId> S;
             bool local = false;  // a sample was promoted by its local size below R
-            for (SampleId p = 0; p < state.size(); ++p) {
+            // In a local update, the dormant samples of the region's vertices, in slot order.
+            std::vector<SampleId> of_region;
+            if (!region.empty()) {
+                for (SampleId w : region_ids)
+                    if (state[w] == State::Vertex) of_region.insert(of_region.end(), dl[w].begin(), dl[w].end());
+                std::sort(of_region.begin(), of_region.end());
+            }
+            const std::size_t n_scan = region.empty() ? state.size() : of_region.size();
+            for (std::size_t k = 0; k < n_scan; ++k) {
+                const SampleId p = region.empty() ? static_cast<SampleId>(k) : of_region[k];
                 if (state[p] != State::Dormant || refused[p]) continue;
                 ++cur.distance_evals;
                 if (distance(P(p), P(owner[p])) > rs(p, R) / 3) {
@@ -906,40 +934,47 @@ struct DeformingMesh::Impl {
         PointGrid grid = vertex_grid(R);
         // Corners, then crease vertices, then the others, each in slot order: a surface
         // vertex too close to a crease vertex is the one removed (spec §10.3).
-        std::vector<SampleId> vs;
-        vs.reserve(mesh.n_vertices());
-        for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
-        std::sort(vs.begin(), vs.end());
+        std::vector<SampleId> vs;  // the vertices looked around (a local update: the region's)
+        vs.reserve(region.empty() ? mesh.n_vertices() : region_ids.size());
+        if (region.empty())
+            for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+        else
+            for (SampleId s : region_ids)
+                if (state[s] == State::Vertex) vs.push_back(s);
         std::vector<char> on_crease;
         if (creases_on) {
             on_crease.assign(state.size(), 0);
             const auto locked = locked_edges(mesh);
-            for (SampleId s : vs) on_crease[s] = corner_degree[s] > 0 || locked_degree(mesh, locked, vert_of[s]) > 0;
-            auto rank = [&](SampleId s) { return corner_degree[s] > 0 ? 0 : on_crease[s] ? 1 : 2; };
-            std::stable_sort(vs.begin(), vs.end(), [&](SampleId a, SampleId b) { return rank(a) < rank(b); });
+            for (Vertex x : mesh.vertices())
+                on_crease[sid(x)] = corner_degree[sid(x)] > 0 || locked_degree(mesh, locked, x) > 0;
         }
+        auto rank = [&](SampleId s) { return corner_degree[s] > 0 ? 0 : !on_crease.empty() && on_crease[s] ? 1 : 2; };
+        auto before = [&](SampleId a, SampleId b) { return std::pair(rank(a), a) < std::pair(rank(b), b); };
+        std::sort(vs.begin(), vs.end(), before);
         // The Deletion's decimation (factor 1/2) leaves crease vertices: removing them
         // lengthens crease edges, which no flip can shorten, and R would grow with every
         // deletion. The spacing repair (1/3) still thins a compressed crease.
         const bool spare_creases = factor > 0.4;
         std::vector<char> black(state.size(), 0);
+        std::vector<SampleId> blacks;
         for (SampleId v : vs) {
             if (black[v]) continue;
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
                 if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && !on_crease.empty() && on_crease[w]))
                     return;
                 ++cur.distance_evals;
-                if (distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) black[w] = 1;
+                if (!black[w] && distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) {
+                    black[w] = 1;
+                    blacks.push_back(w);
+                }
             });
         }
-        std::vector<SampleId> blacks;
-        for (SampleId v : vs)
-            if (black[v]) blacks.push_back(v);
         if (blacks.empty()) return 0;
+        std::sort(blacks.begin(), blacks.end(), before);
         std::vector<SampleId> whites;
-        whites.reserve(vs.size() - blacks.size());
-        for (SampleId v : vs)
-            if (!black[v]) whites.push_back(v);
+        whites.reserve(mesh.n_vertices() - blacks.size());
+        for (Vertex x : mesh.vertices())
+            if (!black[sid(x)]) whites.push_back(sid(x));
         const PointGrid white = PointGrid::bulk(grid_cell(R), pos, whites);
         auto posf = [&](std::uint32_t s) { return P(s); };
         std::size_t removed = 0;
@@ -1035,6 +1070,26 @@ struct DeformingMesh::Impl {
         });
         return worst;
     }
+    /// The vertices (samples) at the ends of the pairs whose strain plus move to `to` exceeds
+    /// their budget (for a dormant pair, its owner), each once.
+    [[nodiscard]] std::vector<SampleId> over_budget(const std::vector<Point3>& to, const detail::Mat3& turn) {
+        std::vector<SampleId> out;
+        std::vector<char> seen(pos.size(), 0);
+        auto add = [&](SampleId s) {
+            if (!seen[s]) {
+                seen[s] = 1;
+                out.push_back(s);
+            }
+        };
+        for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
+            const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
+            if ((strain(k) + relative_move(to, a, b, turn)) / B > 1) {
+                if (state[a] == State::Vertex) add(a);
+                add(b);
+            }
+        });
+        return out;
+    }
     /// Moves every sample that is not dead to `to` (slot order); with `track`, each pair's
     /// relative move (apart from `turn`) is added to its strain.
     void move_samples(const std::vector<Point3>& to, bool track, const detail::Mat3& turn = {}) {
@@ -1093,6 +1148,18 @@ struct DeformingMesh::Impl {
             }
             double ratio = strain_ratio(at, step, true);
             if (ratio > 1) {
+                if (params.local_updates) {
+                    // U: the ends of the pairs over the budget (a dormant pair: its owner), and
+                    // their 2-ring; global when that is more than half of the mesh.
+                    const std::vector<SampleId> seeds = over_budget(at, step);
+                    set_region(seeds);
+                    if (2 * region_ids.size() > mesh.n_vertices()) {
+                        clear_region();
+                    } else {
+                        ++rep.local_updates;
+                        rep.region_vertices += region_ids.size();
+                    }
+                }
                 const DeformUpdateReport u = mesh_update(true);
                 rep.internal += u.counters;
                 ++rep.internal_updates;
@@ -1105,7 +1172,9 @@ struct DeformingMesh::Impl {
 
     /// MeshUpdate at the current positions: RefineVert, the queued insertions and deletions
     /// (not when `internal`, an update between integer times), the spacing repair, the ball
-    /// check, the next step.
+    /// check, the next step. With a region (set_region(); internal updates only) RefineVert,
+    /// the flips and the spacing repair work there (spec §10.1's U), and the strain is reset
+    /// there.
     DeformUpdateReport mesh_update(bool internal) {
         const auto t0 = Clock::now();
         DeformUpdateReport rep;
@@ -1124,8 +1193,17 @@ struct DeformingMesh::Impl {
         // The ball check is a diagnostic of the states the caller sees, at integer times (an
         // update between sub-steps is followed by more motion within the same unit).
         if (!internal) report_balls("after the update's global flips");
-        schedule();
-        finish_update();
+        // An update between sub-steps refreshes R (the budget's scale) but leaves the next
+        // step where the last update at an integer time put it (spec §10.1: t2 = t1 +
+        // floor(R / (kappa lambda)) stays in force, and the caller's edits wait for it).
+        if (internal)
+            R_last = max_circumradius();
+        else
+            schedule();
+        if (region.empty())
+            finish_update();
+        else
+            finish_local();
         if (!internal) emergency_requested = false;
         rep.R_after = R_last;
         if (rep.R_before > 0 && rep.R_after > kCoarseningWarningFactor * rep.R_before)
@@ -1169,14 +1247,75 @@ struct DeformingMesh::Impl {
         mesh.garbage_collection();
         strain_e.assign(mesh.edges_size(), 0.0);
         strain_d.assign(pos.size(), 0.0);
+        edge_ends.assign(mesh.edges_size(), {});
+        for (Edge e : mesh.edges()) edge_ends[e.idx()] = ends_of(e);
         std::fill(vert_of.begin(), vert_of.end(), Vertex());
         for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
+        finish_normals();
+    }
+    /// The end of a local update: no garbage collection (handles stay valid until the next
+    /// update at an integer time); the strain restarts on the region's pairs and on every edge
+    /// the update made or flipped (its ends changed), and holds elsewhere.
+    void finish_local() {
+        strain_e.resize(mesh.edges_size(), 0.0);
+        edge_ends.resize(mesh.edges_size(), {});
+        for (Edge e : mesh.edges()) {
+            const auto ab = ends_of(e);
+            if (ab != edge_ends[e.idx()] || region[ab[0]] || region[ab[1]]) {
+                strain_e[e.idx()] = 0;
+                edge_ends[e.idx()] = ab;
+            }
+        }
+        strain_d.resize(pos.size(), 0.0);
+        for (SampleId s : region_ids)
+            if (state[s] == State::Vertex)
+                for (SampleId p : dl[s]) strain_d[p] = 0;
+        finish_normals();
+        clear_region();
+    }
+    void finish_normals() {
         folded_at_step = folded_edges();
         ref_normals.assign(mesh.faces_size(), Vec3{});
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
             ref_normals[f.idx()] = triangle_normal(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2]));
         }
+    }
+    /// The samples of an edge's ends, smaller first.
+    [[nodiscard]] std::array<SampleId, 2> ends_of(Edge e) const {
+        const Halfedge h = SurfaceMesh::halfedge(e, 0);
+        const SampleId a = sid(mesh.from_vertex(h)), b = sid(mesh.to_vertex(h));
+        return {std::min(a, b), std::max(a, b)};
+    }
+
+    // ---- the region of a local update (spec §10.1) ---------------------------------------------
+    /// Samples in the region (by slot; empty: no local update running) and their list; a
+    /// vertex made during the update joins it (make_vertex).
+    std::vector<char> region;
+    std::vector<SampleId> region_ids;
+    /// The ends (samples) of each edge at the last reset of its strain: an edge whose ends
+    /// differ now was made or flipped since.
+    std::vector<std::array<SampleId, 2>> edge_ends;
+    /// Sets the region to the vertices `seeds` and their 2-ring.
+    void set_region(const std::vector<SampleId>& seeds) {
+        region.assign(pos.size(), 0);
+        region_ids.clear();
+        auto add = [&](SampleId s) {
+            if (!region[s]) {
+                region[s] = 1;
+                region_ids.push_back(s);
+            }
+        };
+        for (SampleId s : seeds) add(s);
+        for (int ring = 0; ring < 2; ++ring) {
+            const std::size_t n = region_ids.size();
+            for (std::size_t i = 0; i < n; ++i)
+                for (Halfedge h : mesh.outgoing_halfedges(vert_of[region_ids[i]])) add(sid(mesh.to_vertex(h)));
+        }
+    }
+    void clear_region() {
+        region.clear();
+        region_ids.clear();
     }
 
     /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90);

@@ -101,6 +101,14 @@ struct DeformOptions {
     /// lambda <= R / kappa) this never fires and the run is the paper's. 1 turns it off (the
     /// paper's algorithm alone; floor(R / (kappa lambda)) = 0 is then Violation::StepTooShort).
     std::size_t max_substeps = 256;
+    /// Spec §10.1: an update between sub-steps works on a region U only: the ends of the pairs
+    /// whose relative displacement would exceed the budget, and their 2-ring. RefineVert
+    /// promotes the dormant samples of U's vertices, the flips start from U's edges (and
+    /// propagate as far as they must), the spacing repair looks around U's vertices, and the
+    /// strain is reset on U's pairs and on every edge the update made. When U holds more than
+    /// half of the vertices the update is global. false: every update between sub-steps is
+    /// global (MeshUpdate at the sub-step's positions).
+    bool local_updates = true;
     /// Local size field (spec §10.2; not in the paper): a sample's size is
     /// r(p) = min(R, size_factor * lfs(p)) instead of the global R (R = the largest
     /// circumradius, as in the paper), with lfs its local feature size: from
@@ -257,6 +265,9 @@ struct StepReport {
     /// Updates run inside the unit, before a sub-step, to keep the budget (their work is in
     /// `internal`; the caller's update() at t is not among them).
     std::size_t internal_updates = 0;
+    /// Of those, the updates restricted to a region (DeformOptions::local_updates), and their
+    /// regions' vertices summed (a global update counts none).
+    std::size_t local_updates = 0, region_vertices = 0;
     UpdateCounters internal;
     /// Largest (relative displacement since the last update) / budget over the pairs at any
     /// sub-step of the unit: <= 1 unless an update's new edges move faster than the budget
