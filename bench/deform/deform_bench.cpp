@@ -20,6 +20,7 @@
 
 #include "dynmesh/deform/deforming_mesh.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
+#include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/shapes/analytic.hpp"
 #include "recording_reporter.hpp"
@@ -149,6 +150,57 @@ void BM_DeformFastFrame(benchmark::State& state) {
     state.counters["retries"] = double(retries) / double(frames);
 }
 
+/// A fast local frame: a dimple of radius 0.3 about the pole (0, 0, 1) is pushed in by 0.15
+/// at odd units and released at even ones (the rest of the sphere still), so the pairs over
+/// their budget sit in the cap. Timed: advance() + update(), as BM_DeformFastFrame; with
+/// the updates between sub-steps local (spec §10.1, the default) or global
+/// (BM_DeformLocalFastFrameGlobal).
+void local_fast_frame(benchmark::State& state, bool local) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    static std::map<std::pair<std::size_t, bool>, std::unique_ptr<DeformingMesh>> cache;
+    const Sphere sphere(Point3{0, 0, 0}, 1.0);
+    const std::vector<Point3> p0 = sphere.sample_uniform(n, 1);
+    auto& dm = cache[{n, local}];
+    if (!dm) {
+        DeformOptions params;
+        params.lambda = 2e-4;
+        params.h0_probes = std::max<std::size_t>(n, 100000);
+        params.local_updates = local;
+        dm = std::make_unique<DeformingMesh>(p0, params, InitialSurface{.surface = &sphere});
+    }
+    std::vector<Point3> pos(p0.size());
+    std::size_t substeps = 0, internal = 0, local_updates = 0, region = 0, frames = 0, changes = 0;
+    for (auto _ : state) {
+        const int t = dm->time() + 1;
+        const double depth = t % 2 == 1 ? 0.15 : 0.0;
+        for (std::size_t i = 0; i < p0.size(); ++i) {
+            const double d = distance(p0[i], Point3{0, 0, 1});
+            const double w = d < 0.3 ? 0.5 * (1 + std::cos(kPi * d / 0.3)) : 0.0;
+            pos[i] = p0[i] * (1 - depth * w);
+        }
+        const auto start = Clock::now();
+        const StepReport st = dm->advance(t, pos);
+        const DeformUpdateReport u = dm->update();
+        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+        substeps += st.substeps;
+        internal += st.internal_updates;
+        changes += st.internal.changes() + u.counters.changes();
+        local_updates += st.local_updates;
+        region += st.region_vertices;
+        ++frames;
+    }
+    state.counters["samples"] = double(n);
+    state.counters["vertices"] = double(dm->mesh().n_vertices());
+    state.counters["substeps"] = double(substeps) / double(frames);
+    state.counters["internal_updates"] = double(internal) / double(frames);
+    state.counters["local_updates"] = double(local_updates) / double(frames);
+    state.counters["changes"] = double(changes) / double(frames);
+    state.counters["region_share"] =
+        local_updates > 0 ? double(region) / double(local_updates) / double(dm->mesh().n_vertices()) : 1.0;
+}
+void BM_DeformLocalFastFrame(benchmark::State& state) { local_fast_frame(state, true); }
+void BM_DeformLocalFastFrameGlobal(benchmark::State& state) { local_fast_frame(state, false); }
+
 /// The baseline: a from-scratch advancing-front reconstruction of the same samples at the
 /// positions of the last update.
 void BM_CgalAdvancingFrontRebuild(benchmark::State& state) {
@@ -170,6 +222,10 @@ BENCHMARK(BM_DeformUpdate)->RangeMultiplier(10)->Range(10000, 1000000)->UseManua
 BENCHMARK(BM_DeformUpdateSorted)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_DeformFastFrame)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(4);
+BENCHMARK(BM_DeformLocalFastFrame)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(4);
+BENCHMARK(BM_DeformLocalFastFrameGlobal)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(4);
 BENCHMARK(BM_CgalAdvancingFrontRebuild)->RangeMultiplier(10)->Range(10000, 1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
@@ -201,6 +257,25 @@ void print_summary(const dynmesh::bench::RecordingReporter& rep) {
                     r.counter("internal_updates", 0), r.counter("retries", 0), r.seconds, r.seconds / double(n) * 1e9);
         if (cgal.count(n))
             std::printf(" %14.3f %10.3f", cgal.at(n).seconds, r.seconds / cgal.at(n).seconds);
+        std::printf("\n");
+    }
+    const auto& dimple = rep.runs("BM_DeformLocalFastFrame");
+    const auto& g = rep.runs("BM_DeformLocalFastFrameGlobal");
+    std::printf("\nSummary: one fast local frame (a dimple pushed in or released at the pole), updates between "
+                "sub-steps local (U) or global, vs. the CGAL rebuild\n");
+    std::printf("%10s %10s %10s %10s %10s %12s %12s %12s %12s %12s\n", "samples", "vertices", "substeps", "internal",
+                "|U|/V", "local s", "global s", "global/local", "local/CGAL", "global/CGAL");
+    for (const auto& [n, r] : dimple) {
+        std::printf("%10zu %10.0f %10.1f %10.1f %10.3f %12.4f", n, r.counter("vertices", 0), r.counter("substeps", 0),
+                    r.counter("internal_updates", 0), r.counter("region_share", 1), r.seconds);
+        if (g.count(n))
+            std::printf(" %12.4f %12.2f", g.at(n).seconds, g.at(n).seconds / r.seconds);
+        else
+            std::printf(" %12s %12s", "-", "-");
+        if (cgal.count(n)) {
+            std::printf(" %12.3f", r.seconds / cgal.at(n).seconds);
+            if (g.count(n)) std::printf(" %12.3f", g.at(n).seconds / cgal.at(n).seconds);
+        }
         std::printf("\n");
     }
 }

@@ -267,10 +267,14 @@ struct DeformingMesh::Impl {
         return std::max(box.diagonal() / std::cbrt(n), 1e-300);
     }
     /// Grid of the current vertices (ids = sample ids), cell grid_cell(cell).
+    /// In a local update, only the vertices within kRegionMargin R of the region's box: the
+    /// update's queries start near the region and find what they look for within a few R.
     PointGrid vertex_grid(double cell) const {
+        const Bbox3 box = region_box();
         std::vector<Vertex> vs;
         vs.reserve(mesh.n_vertices());
-        for (Vertex v : mesh.vertices()) vs.push_back(v);
+        for (Vertex v : mesh.vertices())
+            if (box.contains(mesh.position(v))) vs.push_back(v);
         return PointGrid::bulk(grid_cell(cell), vs.size(), [&](std::size_t k) { return mesh.position(vs[k]); },
                                [&](std::size_t k) { return sid(vs[k]); });
     }
@@ -973,8 +977,9 @@ struct DeformingMesh::Impl {
         std::sort(blacks.begin(), blacks.end(), before);
         std::vector<SampleId> whites;
         whites.reserve(mesh.n_vertices() - blacks.size());
+        const Bbox3 box = region_box();
         for (Vertex x : mesh.vertices())
-            if (!black[sid(x)]) whites.push_back(sid(x));
+            if (!black[sid(x)] && box.contains(P(sid(x)))) whites.push_back(sid(x));
         const PointGrid white = PointGrid::bulk(grid_cell(R), pos, whites);
         auto posf = [&](std::uint32_t s) { return P(s); };
         std::size_t removed = 0;
@@ -1061,18 +1066,25 @@ struct DeformingMesh::Impl {
         return std::min(norm(e1 - e0), norm(e1 - turn * e0));
     }
     /// Largest (strain + relative move) / budget over the pairs when every sample goes from
-    /// pos to `to` (the move alone, when !with_strain).
-    [[nodiscard]] double strain_ratio(const std::vector<Point3>& to, const detail::Mat3& turn, bool with_strain) {
+    /// pos to `to` (the move alone, when !with_strain). `moves` (when given) receives each
+    /// pair's relative move by pair index, for over_budget() and move_samples() while the
+    /// mesh stays as it is.
+    [[nodiscard]] double strain_ratio(const std::vector<Point3>& to, const detail::Mat3& turn, bool with_strain,
+                                      std::vector<double>* moves = nullptr) {
         double worst = 0;
+        if (moves) moves->resize(mesh.edges_size() + pos.size());
         for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
             const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
-            worst = std::max(worst, ((with_strain ? strain(k) : 0.0) + relative_move(to, a, b, turn)) / B);
+            const double m = relative_move(to, a, b, turn);
+            if (moves) (*moves)[k] = m;
+            worst = std::max(worst, ((with_strain ? strain(k) : 0.0) + m) / B);
         });
         return worst;
     }
     /// The vertices (samples) at the ends of the pairs whose strain plus move to `to` exceeds
     /// their budget (for a dormant pair, its owner), each once.
-    [[nodiscard]] std::vector<SampleId> over_budget(const std::vector<Point3>& to, const detail::Mat3& turn) {
+    /// `moves`: from strain_ratio() on the same mesh and `to`.
+    [[nodiscard]] std::vector<SampleId> over_budget(const std::vector<double>& moves) {
         std::vector<SampleId> out;
         std::vector<char> seen(pos.size(), 0);
         auto add = [&](SampleId s) {
@@ -1083,18 +1095,18 @@ struct DeformingMesh::Impl {
         };
         for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
             const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
-            if ((strain(k) + relative_move(to, a, b, turn)) / B > 1) {
+            if ((strain(k) + moves[k]) / B > 1) {
                 if (state[a] == State::Vertex) add(a);
                 add(b);
             }
         });
         return out;
     }
-    /// Moves every sample that is not dead to `to` (slot order); with `track`, each pair's
-    /// relative move (apart from `turn`) is added to its strain.
-    void move_samples(const std::vector<Point3>& to, bool track, const detail::Mat3& turn = {}) {
-        if (track)
-            for_each_pair([&](std::size_t k, SampleId a, SampleId b) { strain(k) += relative_move(to, a, b, turn); });
+    /// Moves every sample that is not dead to `to` (slot order); with `moves` (strain_ratio()'s
+    /// on this mesh and `to`), each pair's relative move is added to its strain.
+    void move_samples(const std::vector<Point3>& to, const std::vector<double>* moves = nullptr) {
+        if (moves)
+            for_each_pair([&](std::size_t k, SampleId, SampleId) { strain(k) += (*moves)[k]; });
         for (SampleId s = 0; s < pos.size(); ++s)
             if (state[s] != State::Dead) pos[s] = to[s];
         for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
@@ -1112,7 +1124,7 @@ struct DeformingMesh::Impl {
     void substep_to(const std::vector<Point3>& to, StepReport& rep, std::size_t min_n, std::unique_ptr<Impl>* save,
                     int t_before) {
         if (params.max_substeps <= 1 || !(budget() > 0) || !std::isfinite(budget())) {
-            move_samples(to, false);
+            move_samples(to);
             return;
         }
         const std::vector<Point3> from = pos;
@@ -1132,6 +1144,12 @@ struct DeformingMesh::Impl {
         rep.substeps = n;
         std::vector<Point3> at(pos.size());
         const detail::Mat3 full = fit.rotation(), step = fit.rotation(1.0 / static_cast<double>(n));
+        std::vector<Vec3> res;  // each sample's move apart from the turn
+        if (fit.angle != 0 && n > 1) {
+            res.resize(pos.size());
+            for (std::size_t s = 0; s < res.size(); ++s) res[s] = to[s] - fit.c_to - full * (from[s] - fit.c_from);
+        }
+        std::vector<double> moves;  // each pair's relative move in this sub-step
         for (std::size_t k = 1; k <= n; ++k) {
             const double f = static_cast<double>(k) / static_cast<double>(n);
             if (k == n) {
@@ -1141,17 +1159,14 @@ struct DeformingMesh::Impl {
             } else {
                 const detail::Mat3 turn = fit.rotation(f);
                 const Point3 c = fit.c_from + (fit.c_to - fit.c_from) * f;
-                for (std::size_t s = 0; s < at.size(); ++s) {
-                    const Vec3 res = to[s] - fit.c_to - full * (from[s] - fit.c_from);
-                    at[s] = c + turn * (from[s] - fit.c_from) + res * f;
-                }
+                for (std::size_t s = 0; s < at.size(); ++s) at[s] = c + turn * (from[s] - fit.c_from) + res[s] * f;
             }
-            double ratio = strain_ratio(at, step, true);
+            double ratio = strain_ratio(at, step, true, &moves);
             if (ratio > 1) {
                 if (params.local_updates) {
                     // U: the ends of the pairs over the budget (a dormant pair: its owner), and
                     // their 2-ring; global when that is more than half of the mesh.
-                    const std::vector<SampleId> seeds = over_budget(at, step);
+                    const std::vector<SampleId> seeds = over_budget(moves);
                     set_region(seeds);
                     if (2 * region_ids.size() > mesh.n_vertices()) {
                         clear_region();
@@ -1163,10 +1178,10 @@ struct DeformingMesh::Impl {
                 const DeformUpdateReport u = mesh_update(true);
                 rep.internal += u.counters;
                 ++rep.internal_updates;
-                ratio = strain_ratio(at, step, true);
+                ratio = strain_ratio(at, step, true, &moves);
             }
             rep.max_strain_ratio = std::max(rep.max_strain_ratio, ratio);
-            move_samples(at, true, step);
+            move_samples(at, &moves);
         }
     }
 
@@ -1288,6 +1303,72 @@ struct DeformingMesh::Impl {
         return {std::min(a, b), std::max(a, b)};
     }
 
+    // ---- the local intersection test (spec §10.4) ----------------------------------------------
+    /// The sample positions and each face's vertices (samples, smallest first) at the start
+    /// of a unit.
+    struct UnitStart {
+        std::vector<Point3> pos;
+        std::vector<std::array<SampleId, 3>> faces;  ///< by face index
+    };
+    [[nodiscard]] std::array<SampleId, 3> face_samples(Face f) const {
+        const auto vs = mesh.face_vertices(f);
+        std::array<SampleId, 3> a{sid(vs[0]), sid(vs[1]), sid(vs[2])};
+        std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+        return a;
+    }
+    [[nodiscard]] UnitStart unit_start() const {
+        UnitStart u;
+        u.pos = pos;
+        u.faces.assign(mesh.faces_size(), {kNoSample, kNoSample, kNoSample});
+        for (Face f : mesh.faces()) u.faces[f.idx()] = face_samples(f);
+        return u;
+    }
+    /// Whether the mesh intersects itself now, when it did not at `start`: two faces that
+    /// neither moved nor changed since cannot meet, so the faces tested are those with a
+    /// moved vertex or new vertices (an Add, a Remove or a flip made them), and every face
+    /// whose box meets one of theirs (its vertices lie within the longest edge, <= 2R, of
+    /// that box). The whole mesh when more than half of the faces changed.
+    [[nodiscard]] bool intersects_near_changes(const UnitStart& start) const {
+        std::vector<Face> changed;
+        for (Face f : mesh.faces()) {
+            const auto vs = mesh.face_vertices(f);
+            bool c = f.idx() >= start.faces.size() || start.faces[f.idx()] != face_samples(f);
+            for (int i = 0; i < 3 && !c; ++i) c = pos[sid(vs[i])] != start.pos[sid(vs[i])];
+            if (c) changed.push_back(f);
+        }
+        if (2 * changed.size() > mesh.n_faces()) return has_self_intersections(mesh);
+        if (changed.empty()) return false;
+        const double R = max_circumradius();
+        const PointGrid grid = vertex_grid(R);
+        std::vector<char> in(mesh.faces_size(), 0);
+        std::vector<Face> near;
+        auto box_of = [&](Face f) {
+            Bbox3 b;
+            for (Vertex x : mesh.face_vertices(f)) b.extend(mesh.position(x));
+            return b;
+        };
+        for (Face f : changed) {
+            const Bbox3 b = box_of(f);
+            const Point3 c = (b.min + b.max) * 0.5;
+            const Vec3 half = (b.max - b.min) * 0.5;
+            const double reach = std::max({half.x, half.y, half.z}) + 2 * R * (1 + 1e-9);
+            grid.for_each_candidate(c, reach, [&](std::uint32_t s) {
+                for (Halfedge h : mesh.outgoing_halfedges(vert_of[s])) {
+                    const Face g = mesh.face(h);
+                    if (!g.is_valid() || in[g.idx()]) continue;
+                    if (!box_of(g).overlaps(b)) continue;
+                    in[g.idx()] = 1;
+                    near.push_back(g);
+                }
+            });
+            if (!in[f.idx()]) {
+                in[f.idx()] = 1;
+                near.push_back(f);
+            }
+        }
+        return has_self_intersections(mesh, near);
+    }
+
     // ---- the region of a local update (spec §10.1) ---------------------------------------------
     /// Samples in the region (by slot; empty: no local update running) and their list; a
     /// vertex made during the update joins it (make_vertex).
@@ -1312,6 +1393,24 @@ struct DeformingMesh::Impl {
             for (std::size_t i = 0; i < n; ++i)
                 for (Halfedge h : mesh.outgoing_halfedges(vert_of[region_ids[i]])) add(sid(mesh.to_vertex(h)));
         }
+    }
+    /// How far around the region's box a local update's grids reach, in units of R.
+    static constexpr double kRegionMargin = 8;
+    /// The box of the region's vertices grown by kRegionMargin R (everything outside a local
+    /// update).
+    [[nodiscard]] Bbox3 region_box() const {
+        Bbox3 b;
+        if (region.empty()) {
+            b.min = Vec3{-INFINITY, -INFINITY, -INFINITY};
+            b.max = Vec3{INFINITY, INFINITY, INFINITY};
+            return b;
+        }
+        for (SampleId s : region_ids)
+            if (state[s] == State::Vertex) b.extend(P(s));
+        const double m = kRegionMargin * max_circumradius();
+        b.min = b.min - Vec3{m, m, m};
+        b.max = b.max + Vec3{m, m, m};
+        return b;
     }
     void clear_region() {
         region.clear();
@@ -1755,6 +1854,10 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
             worst = s;
         }
     }
+    // The unit's start, for the local intersection test below (spec §10.4), when the mesh was
+    // embedded then.
+    const bool local_check = I.params.intersection_checks && !I.intersecting;
+    const UnitStart start = local_check ? I.unit_start() : UnitStart{};
     I.substep_to(to, rep, min_n, save, t - dt);
     I.touch();
     rep.max_displacement = maxd;
@@ -1796,7 +1899,7 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
     // moved at once within the budget (the paper's case) keeps the state it had.
     rep.self_intersecting = I.intersecting;
     if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0 || rep.new_folds > 0 || inverted > 0))
-        rep.self_intersecting = has_self_intersections(I.mesh);
+        rep.self_intersecting = local_check ? I.intersects_near_changes(start) : has_self_intersections(I.mesh);
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;
     rep.update_due = t >= I.next || rep.emergency;

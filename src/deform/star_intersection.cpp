@@ -47,9 +47,7 @@ bool star_intersects(const SurfaceMesh& m, Vertex v, const PointGrid& grid, doub
     auto overlaps = [&](Face g) {
         Bbox3 b;
         for (Vertex x : m.face_vertices(g)) b.extend(m.position(x));
-        for (std::size_t i = 0; i < 3; ++i)
-            if (b.max[i] < box.min[i] || b.min[i] > box.max[i]) return false;
-        return true;
+        return b.overlaps(box);
     };
     // Faces met before (each face is seen from up to three of its vertices).
     std::vector<Face> tested;

@@ -86,4 +86,19 @@ bool has_self_intersections(const SurfaceMesh& mesh) {
     return PMP::does_self_intersect<CGAL::Sequential_tag>(copy.mesh);
 }
 
+bool has_self_intersections(const SurfaceMesh& mesh, std::span<const Face> faces) {
+    if (faces.empty()) return false;
+    const CgalCopy copy = to_cgal(mesh);
+    std::vector<std::uint32_t> index(mesh.faces_size(), UINT32_MAX);  // our face -> CGAL face
+    for (std::size_t i = 0; i < copy.faces.size(); ++i) index[copy.faces[i].idx()] = static_cast<std::uint32_t>(i);
+    std::vector<CgalFace> range;
+    range.reserve(faces.size());
+    for (const Face f : faces) {
+        DYNMESH_CHECK(f.idx() < index.size() && index[f.idx()] != UINT32_MAX,
+                      "has_self_intersections: face f" + std::to_string(f.idx()) + " is not a live face");
+        range.emplace_back(index[f.idx()]);
+    }
+    return PMP::does_self_intersect<CGAL::Sequential_tag>(range, copy.mesh);
+}
+
 }  // namespace dynmesh

@@ -152,6 +152,57 @@ TEST(Substep, EqualsTheSlowMotionItStandsFor) {
     EXPECT_TRUE(inv.ok()) << inv.summary();
 }
 
+/// A dimple of radius 0.3 about the pole (0, 0, 1), pushed in by `depth`.
+std::vector<Point3> dimpled(const std::vector<Point3>& p0, double depth) {
+    std::vector<Point3> out(p0.size());
+    for (std::size_t i = 0; i < p0.size(); ++i) {
+        const double d = distance(p0[i], Point3{0, 0, 1});
+        const double w = d < 0.3 ? 0.5 * (1 + std::cos(kPi * d / 0.3)) : 0.0;
+        out[i] = p0[i] * (1 - depth * w);
+    }
+    return out;
+}
+
+TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
+    // Spec §10.1: a fast dimple at the pole, pushed in and released, the rest of the sphere
+    // still. The updates between sub-steps work on the pairs over their budget and their
+    // 2-ring: a small part of the mesh. Each unit ends with no fold and no self-intersection,
+    // and after its update every invariant holds; the same run with global updates between
+    // sub-steps, too.
+    const auto P0 = sphere_samples(4000, 13);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    for (const bool local : {true, false}) {
+        DeformOptions o = options(0.1);
+        o.local_updates = local;
+        DeformingMesh dm(P0, o, {.surface = &sphere});
+        std::size_t internal = 0, local_updates = 0, region = 0;
+        for (int t = 1; t <= 4; ++t) {
+            const StepReport st = dm.advance(t, dimpled(P0, t % 2 == 1 ? 0.15 : 0.0));
+            EXPECT_GT(st.substeps, 1u);
+            EXPECT_EQ(st.inverted_triangles, 0u) << "t = " << t;
+            EXPECT_EQ(st.new_folds, 0u) << "t = " << t;
+            EXPECT_FALSE(st.self_intersecting) << "t = " << t;
+            internal += st.internal_updates;
+            local_updates += st.local_updates;
+            region += st.region_vertices;
+            dm.update();
+            const auto inv = dm.check_invariants();
+            EXPECT_TRUE(inv.ok()) << "local " << local << ", t = " << t << ": " << inv.summary();
+            EXPECT_EQ(count_self_intersections(dm.mesh()), 0u);
+        }
+        ASSERT_GT(internal, 0u);
+        if (local) {
+            EXPECT_EQ(local_updates, internal);
+            // The cap holds some 2 % of the sphere's area; its regions stay well below a tenth.
+            EXPECT_LT(static_cast<double>(region) / static_cast<double>(local_updates),
+                      0.1 * static_cast<double>(dm.mesh().n_vertices()));
+        } else {
+            EXPECT_EQ(local_updates, 0u);
+            EXPECT_EQ(region, 0u);
+        }
+    }
+}
+
 TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
     // One vertex moved along the sphere past a neighbour in one unit: without sub-stepping
     // its triangles turn inside out (DeformMonitors.InvertedTrianglesAreDetected...).

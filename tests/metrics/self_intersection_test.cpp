@@ -2,9 +2,11 @@
 
 #include <set>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "dynmesh/error.hpp"
 #include "test_support.hpp"
 
 namespace dynmesh {
@@ -50,6 +52,32 @@ TEST(SelfIntersection, PushedThroughVertexIntersects) {
         EXPECT_FALSE(share_vertex(mesh, f, g));
         EXPECT_TRUE(seen.insert(std::minmax(f.idx(), g.idx())).second) << "pair listed twice";
     }
+}
+
+TEST(SelfIntersection, AFaceRangeIsTestedWithinItself) {
+    const SurfaceMesh mesh = pierced_icosphere(2);
+    const auto pairs = self_intersections(mesh);
+    ASSERT_FALSE(pairs.empty());
+    const auto [f, g] = pairs.front();
+    const std::vector<Face> both{f, g}, first{f}, second{g};
+    EXPECT_TRUE(has_self_intersections(mesh, both));
+    EXPECT_FALSE(has_self_intersections(mesh, first));  // a pair needs both its faces
+    EXPECT_FALSE(has_self_intersections(mesh, second));
+    // Every face that meets no other: none of them intersects.
+    std::set<std::uint32_t> touched;
+    for (const auto& [a, b] : pairs) {
+        touched.insert(a.idx());
+        touched.insert(b.idx());
+    }
+    std::vector<Face> clean;
+    for (Face x : mesh.faces())
+        if (!touched.count(x.idx())) clean.push_back(x);
+    EXPECT_FALSE(has_self_intersections(mesh, clean));
+    clean.push_back(f);
+    clean.push_back(g);
+    EXPECT_TRUE(has_self_intersections(mesh, clean));
+    EXPECT_FALSE(has_self_intersections(mesh, std::vector<Face>{}));
+    EXPECT_THROW((void)has_self_intersections(mesh, std::vector<Face>{Face(100000)}), InvalidInput);
 }
 
 TEST(SelfIntersection, MaxPairsLimitsTheList) {

@@ -81,6 +81,12 @@ struct Bbox3 {
     [[nodiscard]] constexpr bool contains(const Vec3& p) const {
         return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
     }
+    /// Do the two boxes meet (boundaries included)?
+    [[nodiscard]] constexpr bool overlaps(const Bbox3& o) const {
+        for (std::size_t i = 0; i < 3; ++i)
+            if (o.max[i] < min[i] || o.min[i] > max[i]) return false;
+        return true;
+    }
 };
 
 }  // namespace dynmesh

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -30,5 +31,10 @@ namespace dynmesh {
 
 /// True when some pair of faces intersects (stops at the first one found).
 [[nodiscard]] bool has_self_intersections(const SurfaceMesh& mesh);
+
+/// True when some pair of faces, both in `faces` (live faces of the mesh, each once),
+/// intersects: the test of a neighbourhood (the faces that moved and every face near them).
+/// Copies the whole mesh (linear), then tests only the boxes of `faces`.
+[[nodiscard]] bool has_self_intersections(const SurfaceMesh& mesh, std::span<const Face> faces);
 
 }  // namespace dynmesh
