@@ -92,7 +92,8 @@ void bind_deform(py::module_& m) {
                                 "t = 1, 2, ... and update() when it says update_due.")
         .def(py::init([](const Doubles& positions, double lambda_, double kappa, std::optional<double> h0,
                          std::optional<int> horizon, std::optional<py::array> reference_faces, bool emergency_steps,
-                         std::uint64_t seed, std::size_t max_substeps, double size_factor, double feature_angle_deg) {
+                         std::uint64_t seed, std::size_t max_substeps, double size_factor, double feature_angle_deg,
+                         bool local_updates) {
                  auto self = std::make_unique<PyDeformingMesh>();
                  const std::vector<Point3> p = points3_of(positions, "positions");
                  DeformOptions params;
@@ -105,6 +106,7 @@ void bind_deform(py::module_& m) {
                  params.max_substeps = max_substeps;
                  params.size_factor = size_factor;
                  params.feature_angle_deg = feature_angle_deg;
+                 params.local_updates = local_updates;
                  InitialSurface initial;
                  if (reference_faces) {
                      self->reference = std::make_unique<SurfaceMesh>(SurfaceMesh::from_soup(soup_of(p, *reference_faces)));
@@ -120,6 +122,7 @@ void bind_deform(py::module_& m) {
              py::arg("max_substeps") = DeformOptions{}.max_substeps,
              py::arg("size_factor") = DeformOptions{}.size_factor,
              py::arg("feature_angle_deg") = DeformOptions{}.feature_angle_deg,
+             py::arg("local_updates") = DeformOptions{}.local_updates,
              "positions: the samples at t = 0, (n, 3). lambda_: how far any surface point moves in one\n"
              "time unit at most. kappa: the step constant (next step floor(R / (kappa lambda)) later).\n"
              "h0: the sampling radius (estimated when None). horizon: no step after this time.\n"
@@ -131,7 +134,9 @@ void bind_deform(py::module_& m) {
              "size_factor: a sample's size is min(R, size_factor * local feature size) (default 0.4;\n"
              "0: off, the global R of the paper).\n"
              "feature_angle_deg: edges of the reference sharper than this (180 - dihedral) are creases,\n"
-             "kept as mesh-edge chains through the motion (180: off).")
+             "kept as mesh-edge chains through the motion (180: off).\n"
+             "local_updates: an update between sub-steps works on the pairs over their budget and\n"
+             "their 2-ring (True, the default) or on the whole mesh (False).")
         .def(
             "advance",
             [](PyDeformingMesh& self, int t, const Doubles& positions) {
@@ -145,6 +150,8 @@ void bind_deform(py::module_& m) {
                 d["R"] = s.R;
                 d["substeps"] = s.substeps;
                 d["internal_updates"] = s.internal_updates;
+                d["local_updates"] = s.local_updates;
+                d["region_vertices"] = s.region_vertices;
                 d["max_strain_ratio"] = s.max_strain_ratio;
                 d["retries"] = s.retries;
                 d["inverted_triangles"] = s.inverted_triangles;

@@ -139,6 +139,29 @@ def test_deforming_mesh_follows_its_samples_and_applies_edits():
         dm.advance(32, filler)
 
 
+def test_deforming_mesh_updates_between_substeps_locally():
+    # A fast push on one side of the blob: the unit is cut into sub-steps, and the updates
+    # between them work on a region around the moving part (local_updates), or on the whole
+    # mesh when asked.
+    v, f = blobby()
+    top = v[:, 2].max()
+    push = np.clip((v[:, 2] - (top - 0.15)) / 0.15, 0.0, 1.0) ** 2  # 0 below, 1 at the top
+    for local in (True, False):
+        dm = dynmesh.DeformingMesh(v, lambda_=1e-4, reference_faces=f, local_updates=local)
+        step = dm.advance(1, v - np.outer(push, [0.0, 0.0, 0.08]))
+        assert step["substeps"] > 1 and step["internal_updates"] > 0
+        assert not step["self_intersecting"] and step["inverted_triangles"] == 0
+        if local:
+            assert step["local_updates"] == step["internal_updates"]
+            assert step["region_vertices"] < step["local_updates"] * len(dm.mesh()[0]) / 2
+        else:
+            assert step["local_updates"] == 0 and step["region_vertices"] == 0
+        if step["update_due"]:
+            dm.update()
+        check = dm.check()
+        assert check["ok"], check["problems"]
+
+
 def test_deforming_mesh_refuses_bad_input():
     v, f = blobby()
     with pytest.raises(ValueError, match="lambda"):
