@@ -102,7 +102,8 @@ struct DeformOptions {
     /// paper's algorithm alone; floor(R / (kappa lambda)) = 0 is then Violation::StepTooShort).
     std::size_t max_substeps = 256;
     /// Spec §10.1: an update between sub-steps works on a region U only: the ends of the pairs
-    /// whose relative displacement would exceed the budget, and their 2-ring. RefineVert
+    /// whose relative displacement would exceed half the budget (the spec: the budget), and
+    /// their 2-ring. RefineVert
     /// promotes the dormant samples of U's vertices, the flips start from U's edges (and
     /// propagate as far as they must), the spacing repair looks around U's vertices, and the
     /// strain is reset on U's pairs and on every edge the update made. When U holds more than
