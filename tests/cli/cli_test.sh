@@ -925,6 +925,10 @@ deform_check)
     # and monitors included); the paper alone (--max-substeps 1) trips the monitors.
     run 0 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --check=strict --report fast.json --quiet
     [ "$(json_get fast.json "['substeps']")" -gt "$(json_get fast.json "['time_units']")" ] || fail "the fast stretch was not sub-stepped"
+    # The same with every update between sub-steps global: also clean.
+    run 0 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --substep-updates global --check=strict \
+        --report fastg.json --quiet
+    [ "$(json_get fastg.json "['internal_updates']")" -gt 0 ] || fail "no update between sub-steps"
     run 1 "$bin" deform stretch --samples 1500 --steps 24 --speed 8 --max-substeps 1 --check=strict --report strict.json --quiet
     [ "$(json_get strict.json "['check_level']")" = strict ] || fail "check_level"
     python3 - <<'PY' || fail "--check=strict does not list every monitor it fails on"
@@ -951,6 +955,7 @@ deform_bad)
     expect_error 2 "bogus" bogus_scenario
     expect_error 2 "format" stretch --format xyz --samples 500 --steps 5
     expect_error 2 "schedule" stretch --schedule sometimes --samples 500 --steps 5
+    expect_error 2 "substep-updates" stretch --substep-updates nearby --samples 500 --steps 5
     expect_error 2 "speed" stretch --speed nan
     expect_error 2 "warp" stretch --warp bend --samples 500 --steps 5
     expect_error 2 "warp" "$data/meshes/eight.off" --warp wobble
