@@ -75,7 +75,7 @@ Fixture& fixture(std::size_t i) {
     // Distinct after snapping, and no two closer than the refinement resolves (the deepest
     // spread cluster has random pairs below offcenter_min_separation()).
     const double sep = offcenter_min_separation({}, {.rho = kRho});
-    PointGrid near(1e-3);  // PointGrid clamps cell coordinates to ±1e6: no tiny cells
+    PointGrid near(1e-3);
     for (const Vec2& p : c.spread > 0 ? set.points : bench::make_points<2>(c.n, c.clustered, 1)) {
         const Point3 p3{p.x, p.y, 0};
         bool close = false;

@@ -145,15 +145,17 @@ def test_deforming_mesh_updates_between_substeps_locally():
     # mesh when asked.
     v, f = blobby()
     top = v[:, 2].max()
-    push = np.clip((v[:, 2] - (top - 0.15)) / 0.15, 0.0, 1.0) ** 2  # 0 below, 1 at the top
+    push = np.clip((v[:, 2] - (top - 0.06)) / 0.06, 0.0, 1.0) ** 2  # 0 below, 1 at the top
     for local in (True, False):
         dm = dynmesh.DeformingMesh(v, lambda_=1e-4, reference_faces=f, local_updates=local)
-        step = dm.advance(1, v - np.outer(push, [0.0, 0.0, 0.08]))
+        step = dm.advance(1, v - np.outer(push, [0.0, 0.0, 0.04]))
         assert step["substeps"] > 1 and step["internal_updates"] > 0
         assert not step["self_intersecting"] and step["inverted_triangles"] == 0
         if local:
             assert step["local_updates"] == step["internal_updates"]
-            assert step["region_vertices"] < step["local_updates"] * len(dm.mesh()[0]) / 2
+            # The pushed cap is a few percent of the surface; the regions (U and its 2-ring)
+            # stay under a quarter of the vertices.
+            assert step["region_vertices"] < step["local_updates"] * len(dm.mesh()[0]) / 4
         else:
             assert step["local_updates"] == 0 and step["region_vertices"] == 0
         if step["update_due"]:

@@ -274,7 +274,7 @@ struct DeformingMesh::Impl {
         std::vector<Vertex> vs;
         vs.reserve(mesh.n_vertices());
         for (Vertex v : mesh.vertices())
-            if (box.contains(mesh.position(v))) vs.push_back(v);
+            if (region.empty() || box.contains(mesh.position(v))) vs.push_back(v);
         return PointGrid::bulk(grid_cell(cell), vs.size(), [&](std::size_t k) { return mesh.position(vs[k]); },
                                [&](std::size_t k) { return sid(vs[k]); });
     }
@@ -966,6 +966,7 @@ struct DeformingMesh::Impl {
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
                 if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && !on_crease.empty() && on_crease[w]))
                     return;
+                if (!region.empty() && !region[w]) return;  // a local update removes only in its region
                 ++cur.distance_evals;
                 if (!black[w] && distance(P(w), P(v)) < factor * std::min(rs(v, R), rs(w, R))) {
                     black[w] = 1;
@@ -979,7 +980,7 @@ struct DeformingMesh::Impl {
         whites.reserve(mesh.n_vertices() - blacks.size());
         const Bbox3 box = region_box();
         for (Vertex x : mesh.vertices())
-            if (!black[sid(x)] && box.contains(P(sid(x)))) whites.push_back(sid(x));
+            if (!black[sid(x)] && (region.empty() || box.contains(P(sid(x))))) whites.push_back(sid(x));
         const PointGrid white = PointGrid::bulk(grid_cell(R), pos, whites);
         auto posf = [&](std::uint32_t s) { return P(s); };
         std::size_t removed = 0;
@@ -1156,6 +1157,15 @@ struct DeformingMesh::Impl {
             for (std::size_t s = 0; s < res.size(); ++s) res[s] = to[s] - fit.c_to - full * (from[s] - fit.c_from);
         }
         std::vector<double> moves;  // each pair's relative move in this sub-step
+        // Clears the region when an update between sub-steps throws (finish_local() clears it
+        // otherwise), so that later updates are not taken for local ones.
+        struct RegionGuard {
+            Impl& impl;
+            bool armed = false;
+            ~RegionGuard() {
+                if (armed) impl.clear_region();
+            }
+        } guard{*this};
         for (std::size_t k = 1; k <= n; ++k) {
             const double f = static_cast<double>(k) / static_cast<double>(n);
             if (k == n) {
@@ -1174,6 +1184,7 @@ struct DeformingMesh::Impl {
                     // their 2-ring; global when that is more than half of the mesh.
                     const std::vector<SampleId> seeds = over_budget(moves);
                     set_region(seeds);
+                    guard.armed = true;
                     if (2 * region_ids.size() > mesh.n_vertices()) {
                         clear_region();
                     } else {
@@ -1217,8 +1228,10 @@ struct DeformingMesh::Impl {
         // An update between sub-steps refreshes R (the budget's scale) but leaves the next
         // step where the last update at an integer time put it (spec §10.1: t2 = t1 +
         // floor(R / (kappa lambda)) stays in force, and the caller's edits wait for it).
+        // A local update resets the strain in its region only: R_last does not drop, so that no
+        // pair outside it finds its budget (2 R_last / kappa) shrunk below its strain.
         if (internal)
-            R_last = max_circumradius();
+            R_last = region.empty() ? max_circumradius() : std::max(R_last, max_circumradius());
         else
             schedule();
         if (region.empty())
@@ -1310,36 +1323,44 @@ struct DeformingMesh::Impl {
     }
 
     // ---- the local intersection test (spec §10.4) ----------------------------------------------
-    /// The sample positions and each face's vertices (samples, smallest first) at the start
-    /// of a unit.
-    struct UnitStart {
+    /// The sample positions and each face's vertices (samples, smallest first, by face
+    /// index) when the mesh was last tested and found embedded (valid: such a test happened,
+    /// and its mesh did not intersect itself).
+    struct CheckedState {
+        bool valid = false;
         std::vector<Point3> pos;
-        std::vector<std::array<SampleId, 3>> faces;  ///< by face index
+        std::vector<std::array<SampleId, 3>> faces;
     };
+    CheckedState checked;
     [[nodiscard]] std::array<SampleId, 3> face_samples(Face f) const {
         const auto vs = mesh.face_vertices(f);
         std::array<SampleId, 3> a{sid(vs[0]), sid(vs[1]), sid(vs[2])};
         std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
         return a;
     }
-    [[nodiscard]] UnitStart unit_start() const {
-        UnitStart u;
+    [[nodiscard]] CheckedState snapshot() const {
+        CheckedState u;
+        u.valid = true;
         u.pos = pos;
         u.faces.assign(mesh.faces_size(), {kNoSample, kNoSample, kNoSample});
         for (Face f : mesh.faces()) u.faces[f.idx()] = face_samples(f);
         return u;
     }
-    /// Whether the mesh intersects itself now, when it did not at `start`: two faces that
-    /// neither moved nor changed since cannot meet, so the faces tested are those with a
-    /// moved vertex or new vertices (an Add, a Remove or a flip made them), and every face
-    /// whose box meets one of theirs (its vertices lie within the longest edge, <= 2R, of
-    /// that box). The whole mesh when more than half of the faces changed.
-    [[nodiscard]] bool intersects_near_changes(const UnitStart& start) const {
+    /// Whether the mesh intersects itself now, when it did not at `start` (the last test):
+    /// two faces that neither moved nor changed since cannot meet, so the faces tested are
+    /// those with a moved vertex or new vertices (an Add, a Remove or a flip made them, in a
+    /// unit or in an update), and every face whose box meets one of theirs (its vertices lie
+    /// within the longest edge, <= 2R, of that box). The whole mesh when more than half of the
+    /// faces changed.
+    [[nodiscard]] bool intersects_near_changes(const CheckedState& start) const {
         std::vector<Face> changed;
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
             bool c = f.idx() >= start.faces.size() || start.faces[f.idx()] != face_samples(f);
-            for (int i = 0; i < 3 && !c; ++i) c = pos[sid(vs[i])] != start.pos[sid(vs[i])];
+            for (int i = 0; i < 3 && !c; ++i) {
+                const SampleId x = sid(vs[i]);
+                c = x >= start.pos.size() || pos[x] != start.pos[x];
+            }
             if (c) changed.push_back(f);
         }
         if (2 * changed.size() > mesh.n_faces()) return has_self_intersections(mesh);
@@ -1860,10 +1881,6 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
             worst = s;
         }
     }
-    // The unit's start, for the local intersection test below (spec §10.4), when the mesh was
-    // embedded then.
-    const bool local_check = I.params.intersection_checks && !I.intersecting;
-    const UnitStart start = local_check ? I.unit_start() : UnitStart{};
     I.substep_to(to, rep, min_n, save, t - dt);
     I.touch();
     rep.max_displacement = maxd;
@@ -1904,8 +1921,15 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
     // Only a cut unit, or one that ends with a new fold or an inverted triangle, is tested: one
     // moved at once within the budget (the paper's case) keeps the state it had.
     rep.self_intersecting = I.intersecting;
-    if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0 || rep.new_folds > 0 || inverted > 0))
-        rep.self_intersecting = local_check ? I.intersects_near_changes(start) : has_self_intersections(I.mesh);
+    if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0 || rep.new_folds > 0 || inverted > 0)) {
+        // Spec §10.4: local, against the state of the last test, when that one was embedded.
+        rep.self_intersecting =
+            I.checked.valid ? I.intersects_near_changes(I.checked) : has_self_intersections(I.mesh);
+        if (rep.self_intersecting)
+            I.checked.valid = false;
+        else
+            I.checked = I.snapshot();
+    }
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;
     rep.update_due = t >= I.next || rep.emergency;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -182,6 +183,7 @@ TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
             EXPECT_EQ(st.inverted_triangles, 0u) << "t = " << t;
             EXPECT_EQ(st.new_folds, 0u) << "t = " << t;
             EXPECT_FALSE(st.self_intersecting) << "t = " << t;
+            EXPECT_EQ(st.self_intersecting, count_self_intersections(dm.mesh()) > 0) << "t = " << t;
             internal += st.internal_updates;
             local_updates += st.local_updates;
             region += st.region_vertices;

@@ -93,7 +93,7 @@ void expect_queries_exact(const PointGrid& g, const std::vector<Point3>& pts,
 
 TEST(PointGrid, BulkAndDynamicGridsAnswerExactly) {
     Rng rng(7);
-    // Near the origin, and far from it in small cells (cell coordinates ~1e9).
+    // Near the origin, and far from it in small cells (cell coordinates ~7e7).
     for (const auto& [center, size] : {std::pair{Point3{0, 0, 0}, 2.0}, std::pair{Point3{1e6, -2e6, 5e5}, 1.0}}) {
         const std::vector<Point3> pts = cloud(rng, 2000, center, size);
         const double cell = 0.03 * size;

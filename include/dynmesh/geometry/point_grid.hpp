@@ -98,14 +98,15 @@ public:
     void insert(std::uint32_t id, const Point3& p) {
         const CellKey k = key(p);
         extra_[k].push_back(id);
-        mark(k);
+        mark(hash(k));
         ++size_;
     }
     /// Removes id, which must have been inserted at p. Returns false when it is not there.
     bool erase(std::uint32_t id, const Point3& p) {
         const CellKey k = key(p);
+        const std::uint64_t h = hash(k);
         if (!table_.empty()) {
-            Cell& c = table_[slot(k)];
+            Cell& c = table_[slot(k, h)];
             if (c.begin != kNone)
                 for (std::uint32_t i = c.begin; i < c.end; ++i)
                     if (ids_[i] == id) {
@@ -114,7 +115,7 @@ public:
                         return true;
                     }
         }
-        if (extra_.empty() || !maybe_occupied(k)) return false;
+        if (extra_.empty() || !maybe_occupied(h)) return false;
         auto it = extra_.find(k);
         if (it == extra_.end()) return false;
         auto& v = it->second;
@@ -215,9 +216,7 @@ private:
         friend bool operator==(const CellKey&, const CellKey&) = default;
     };
     struct CellKeyHash {
-        std::size_t operator()(const CellKey& k) const noexcept {
-            return static_cast<std::size_t>(hash_ints(k.x, k.y, k.z));
-        }
+        std::size_t operator()(const CellKey& k) const noexcept { return static_cast<std::size_t>(hash(k)); }
     };
 
     // ---- cell coordinates ------------------------------------------------------------------
@@ -251,13 +250,14 @@ private:
     template <class F>
     bool visit_cell(std::int64_t x, std::int64_t y, std::int64_t z, F&& f) const {
         const CellKey k{x, y, z};
+        const std::uint64_t h = hash_ints(x, y, z);  // once, for the table and the filter
         if (!table_.empty()) {
-            const Cell& c = table_[slot(k)];
+            const Cell& c = table_[slot(k, h)];
             if (c.begin != kNone)
                 for (std::uint32_t i = c.begin; i < c.end; ++i)
                     if (f(ids_[i])) return true;
         }
-        if (extra_.empty() || !maybe_occupied(k)) return false;  // most cells of a query are empty
+        if (extra_.empty() || !maybe_occupied(h)) return false;  // most cells of a query are empty
         const auto it = extra_.find(k);
         if (it == extra_.end()) return false;
         for (std::uint32_t id : it->second)
@@ -282,20 +282,26 @@ private:
     /// without a hash-map lookup. Erasing leaves bits set (they only cost a lookup); reset()
     /// clears them.
     static constexpr std::size_t kFilterBits = std::size_t{1} << 15;
-    [[nodiscard]] static std::size_t filter_bit(const CellKey& k) { return hash_ints(k.x, k.y, k.z) & (kFilterBits - 1); }
-    void mark(const CellKey& k) { occupied_[filter_bit(k) >> 6] |= std::uint64_t{1} << (filter_bit(k) & 63); }
-    [[nodiscard]] bool maybe_occupied(const CellKey& k) const {
-        return (occupied_[filter_bit(k) >> 6] >> (filter_bit(k) & 63)) & 1u;
+    /// h: the cell's hash_ints(x, y, z).
+    void mark(std::uint64_t h) {
+        const std::size_t b = h & (kFilterBits - 1);
+        occupied_[b >> 6] |= std::uint64_t{1} << (b & 63);
     }
+    [[nodiscard]] bool maybe_occupied(std::uint64_t h) const {
+        const std::size_t b = h & (kFilterBits - 1);
+        return (occupied_[b >> 6] >> (b & 63)) & 1u;
+    }
+    [[nodiscard]] static std::uint64_t hash(const CellKey& k) { return hash_ints(k.x, k.y, k.z); }
 
     // ---- bulk storage: an open-addressing table of cells over one array of ids --------------
     struct Cell {
         CellKey k;
         std::uint32_t begin = kNone, end = 0;  // ids_[begin, end); begin == kNone: a free slot
     };
-    /// The slot of cell k in the table (a free slot when k has none). \pre a bulk table.
-    [[nodiscard]] std::size_t slot(const CellKey& k) const {
-        std::size_t i = static_cast<std::size_t>(hash_ints(k.x, k.y, k.z)) & mask_;
+    /// The slot of cell k (hash h) in the table (a free slot when k has none). \pre a bulk
+    /// table.
+    [[nodiscard]] std::size_t slot(const CellKey& k, std::uint64_t h) const {
+        std::size_t i = static_cast<std::size_t>(h) & mask_;
         while (table_[i].begin != kNone && !(table_[i].k == k)) i = (i + 1) & mask_;
         return i;
     }
@@ -311,7 +317,7 @@ private:
         std::vector<std::uint32_t> where(n);  // the slot of each id's cell
         for (std::size_t k = 0; k < n; ++k) {
             const CellKey ck = key(at(k));
-            const std::size_t s = slot(ck);
+            const std::size_t s = slot(ck, hash(ck));
             Cell& c = table_[s];
             if (c.begin == kNone) {
                 c = Cell{ck, 0, 0};
@@ -334,7 +340,7 @@ private:
 
     double cell_ = 1, inv_ = 1;
     std::size_t size_ = 0;
-    std::size_t n_cells_ = 0;  // cells of the bulk table
+    std::size_t n_cells_ = 0;  // cells of the bulk table (a cell emptied by erase() still counts)
     // inserted ids
     std::unordered_map<CellKey, std::vector<std::uint32_t>, CellKeyHash> extra_;
     std::vector<std::uint64_t> occupied_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);
