@@ -1323,9 +1323,10 @@ struct DeformingMesh::Impl {
     }
 
     // ---- the local intersection test (spec §10.4) ----------------------------------------------
-    /// The sample positions and each face's vertices (samples, smallest first, by face
-    /// index) when the mesh was last tested and found embedded (valid: such a test happened,
-    /// and its mesh did not intersect itself).
+    /// The sample positions and the faces (each as its vertices' samples, smallest first,
+    /// sorted; face indices change with every garbage collection) when the mesh was last
+    /// tested and found embedded (valid: such a test happened, and its mesh did not intersect
+    /// itself).
     struct CheckedState {
         bool valid = false;
         std::vector<Point3> pos;
@@ -1342,8 +1343,9 @@ struct DeformingMesh::Impl {
         CheckedState u;
         u.valid = true;
         u.pos = pos;
-        u.faces.assign(mesh.faces_size(), {kNoSample, kNoSample, kNoSample});
-        for (Face f : mesh.faces()) u.faces[f.idx()] = face_samples(f);
+        u.faces.reserve(mesh.n_faces());
+        for (Face f : mesh.faces()) u.faces.push_back(face_samples(f));
+        std::sort(u.faces.begin(), u.faces.end());
         return u;
     }
     /// Whether the mesh intersects itself now, when it did not at `start` (the last test):
@@ -1356,7 +1358,7 @@ struct DeformingMesh::Impl {
         std::vector<Face> changed;
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
-            bool c = f.idx() >= start.faces.size() || start.faces[f.idx()] != face_samples(f);
+            bool c = !std::binary_search(start.faces.begin(), start.faces.end(), face_samples(f));
             for (int i = 0; i < 3 && !c; ++i) {
                 const SampleId x = sid(vs[i]);
                 c = x >= start.pos.size() || pos[x] != start.pos[x];
