@@ -1180,8 +1180,9 @@ struct DeformingMesh::Impl {
             double ratio = strain_ratio(at, step, true, &moves);
             if (ratio > 1) {
                 if (params.local_updates) {
-                    // U: the ends of the pairs over the budget (a dormant pair: its owner), and
-                    // their 2-ring; global when that is more than half of the mesh.
+                    // U: the ends of the pairs past kRegionStrainShare of their budget (a
+                    // dormant pair: its owner), and their 2-ring; global when that is more than
+                    // half of the mesh.
                     const std::vector<SampleId> seeds = over_budget(moves);
                     set_region(seeds);
                     guard.armed = true;
