@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "dynmesh/deform/deforming_mesh.hpp"
 #include "dynmesh/geometry/spatial_sort.hpp"
@@ -111,56 +112,18 @@ void update_bench(benchmark::State& state, bool sorted) {
 void BM_DeformUpdate(benchmark::State& state) { update_bench(state, false); }
 void BM_DeformUpdateSorted(benchmark::State& state) { update_bench(state, true); }
 
-/// A fast frame (issue "Deforming real meshes": one update with all its sub-steps): every
-/// unit stretches x by 1.25 or back, so edges move relative to each other by about four
-/// budgets 2 R / kappa and advance() cuts the unit into sub-steps with updates between them,
-/// then checks the mesh for self-intersections; update() follows at every unit. Timed:
-/// advance() + update(), against the same CGAL rebuild.
-void BM_DeformFastFrame(benchmark::State& state) {
+/// Fast frames (issue "Deforming real meshes": one update with all its sub-steps): at every
+/// unit t, `move(t, p0, pos)` places the sphere's samples, advance() cuts the unit into
+/// sub-steps with updates between them and tests the mesh for self-intersections, and
+/// update() follows. Timed: advance() + update(), against the CGAL rebuild. One mesh per
+/// (motion, size, local) lives across the iterations.
+template <class Move>
+void fast_frames(benchmark::State& state, int motion, bool local, Move&& move) {
     const auto n = static_cast<std::size_t>(state.range(0));
-    static std::map<std::size_t, std::unique_ptr<DeformingMesh>> cache;
+    static std::map<std::tuple<int, std::size_t, bool>, std::unique_ptr<DeformingMesh>> cache;
     const Sphere sphere(Point3{0, 0, 0}, 1.0);
     const std::vector<Point3> p0 = sphere.sample_uniform(n, 1);
-    auto& dm = cache[n];
-    if (!dm) {
-        DeformOptions params;
-        params.lambda = 2e-4;
-        params.h0_probes = std::max<std::size_t>(n, 100000);
-        dm = std::make_unique<DeformingMesh>(p0, params, InitialSurface{.surface = &sphere});
-    }
-    std::vector<Point3> pos(p0.size());
-    std::size_t substeps = 0, internal = 0, frames = 0, retries = 0;
-    for (auto _ : state) {
-        const int t = dm->time() + 1;
-        const double s = t % 2 == 1 ? 1.25 : 1.0;
-        for (std::size_t i = 0; i < p0.size(); ++i) pos[i] = Point3{p0[i].x * s, p0[i].y, p0[i].z};
-        const auto start = Clock::now();
-        const StepReport st = dm->advance(t, pos);
-        dm->update();
-        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
-        substeps += st.substeps;
-        internal += st.internal_updates;
-        retries += st.retries;
-        ++frames;
-    }
-    state.counters["samples"] = double(n);
-    state.counters["vertices"] = double(dm->mesh().n_vertices());
-    state.counters["substeps"] = double(substeps) / double(frames);
-    state.counters["internal_updates"] = double(internal) / double(frames);
-    state.counters["retries"] = double(retries) / double(frames);
-}
-
-/// A fast local frame: a dimple of radius 0.3 about the pole (0, 0, 1) is pushed in by 0.15
-/// at odd units and released at even ones (the rest of the sphere still), so the pairs over
-/// their budget sit in the cap. Timed: advance() + update(), as BM_DeformFastFrame; with
-/// the updates between sub-steps local (spec §10.1, the default) or global
-/// (BM_DeformLocalFastFrameGlobal).
-void local_fast_frame(benchmark::State& state, bool local) {
-    const auto n = static_cast<std::size_t>(state.range(0));
-    static std::map<std::pair<std::size_t, bool>, std::unique_ptr<DeformingMesh>> cache;
-    const Sphere sphere(Point3{0, 0, 0}, 1.0);
-    const std::vector<Point3> p0 = sphere.sample_uniform(n, 1);
-    auto& dm = cache[{n, local}];
+    auto& dm = cache[{motion, n, local}];
     if (!dm) {
         DeformOptions params;
         params.lambda = 2e-4;
@@ -169,21 +132,17 @@ void local_fast_frame(benchmark::State& state, bool local) {
         dm = std::make_unique<DeformingMesh>(p0, params, InitialSurface{.surface = &sphere});
     }
     std::vector<Point3> pos(p0.size());
-    std::size_t substeps = 0, internal = 0, local_updates = 0, region = 0, frames = 0, changes = 0;
+    std::size_t substeps = 0, internal = 0, retries = 0, local_updates = 0, region = 0, frames = 0, changes = 0;
     for (auto _ : state) {
         const int t = dm->time() + 1;
-        const double depth = t % 2 == 1 ? 0.15 : 0.0;
-        for (std::size_t i = 0; i < p0.size(); ++i) {
-            const double d = distance(p0[i], Point3{0, 0, 1});
-            const double w = d < 0.3 ? 0.5 * (1 + std::cos(kPi * d / 0.3)) : 0.0;
-            pos[i] = p0[i] * (1 - depth * w);
-        }
+        move(t, p0, pos);
         const auto start = Clock::now();
         const StepReport st = dm->advance(t, pos);
         const DeformUpdateReport u = dm->update();
         state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
         substeps += st.substeps;
         internal += st.internal_updates;
+        retries += st.retries;
         changes += st.internal.changes() + u.counters.changes();
         local_updates += st.local_updates;
         region += st.region_vertices;
@@ -193,10 +152,35 @@ void local_fast_frame(benchmark::State& state, bool local) {
     state.counters["vertices"] = double(dm->mesh().n_vertices());
     state.counters["substeps"] = double(substeps) / double(frames);
     state.counters["internal_updates"] = double(internal) / double(frames);
+    state.counters["retries"] = double(retries) / double(frames);
     state.counters["local_updates"] = double(local_updates) / double(frames);
     state.counters["changes"] = double(changes) / double(frames);
     state.counters["region_share"] =
         local_updates > 0 ? double(region) / double(local_updates) / double(dm->mesh().n_vertices()) : 1.0;
+}
+
+/// Every unit stretches x by 1.25 or back, so edges move relative to each other by about
+/// four budgets 2 R / kappa: every pair is over its budget at once.
+void BM_DeformFastFrame(benchmark::State& state) {
+    fast_frames(state, 0, true, [](int t, const std::vector<Point3>& p0, std::vector<Point3>& pos) {
+        const double s = t % 2 == 1 ? 1.25 : 1.0;
+        for (std::size_t i = 0; i < p0.size(); ++i) pos[i] = Point3{p0[i].x * s, p0[i].y, p0[i].z};
+    });
+}
+
+/// A fast local frame: a dimple of radius 0.3 about the pole (0, 0, 1) is pushed in by 0.15
+/// at odd units and released at even ones (the rest of the sphere still), so the pairs over
+/// their budget sit in the cap; the updates between sub-steps local (spec §10.1, the
+/// default) or global (BM_DeformLocalFastFrameGlobal).
+void local_fast_frame(benchmark::State& state, bool local) {
+    fast_frames(state, 1, local, [](int t, const std::vector<Point3>& p0, std::vector<Point3>& pos) {
+        const double depth = t % 2 == 1 ? 0.15 : 0.0;
+        for (std::size_t i = 0; i < p0.size(); ++i) {
+            const double d = distance(p0[i], Point3{0, 0, 1});
+            const double w = d < 0.3 ? 0.5 * (1 + std::cos(kPi * d / 0.3)) : 0.0;
+            pos[i] = p0[i] * (1 - depth * w);
+        }
+    });
 }
 void BM_DeformLocalFastFrame(benchmark::State& state) { local_fast_frame(state, true); }
 void BM_DeformLocalFastFrameGlobal(benchmark::State& state) { local_fast_frame(state, false); }

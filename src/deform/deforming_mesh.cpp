@@ -1041,6 +1041,10 @@ struct DeformingMesh::Impl {
     /// floor schedule's allowance 2 lambda floor(R / (kappa lambda)) when the model holds;
     /// 2 min(r_a, r_b) / kappa for a pair (a, b) with the size field.
     [[nodiscard]] double budget() const { return 2 * R_last / params.kappa; }
+    /// The budget of the pair (a, b): 2 min(r_a, r_b) / kappa.
+    [[nodiscard]] double pair_budget(SampleId a, SampleId b) const {
+        return budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
+    }
 
     /// Calls f(k, a, b) for every pair the budget covers: mesh edges (k = edge index) and
     /// dormant samples with their owners (k = edges_size() + slot); strain(k) is its strain.
@@ -1075,7 +1079,7 @@ struct DeformingMesh::Impl {
         double worst = 0;
         if (moves) moves->resize(mesh.edges_size() + pos.size());
         for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
-            const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
+            const double B = pair_budget(a, b);
             const double m = relative_move(to, a, b, turn);
             if (moves) (*moves)[k] = m;
             worst = std::max(worst, ((with_strain ? strain(k) : 0.0) + m) / B);
@@ -1101,7 +1105,7 @@ struct DeformingMesh::Impl {
             }
         };
         for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
-            const double B = budget() * std::min(rs(a, R_last), rs(b, R_last)) / R_last;
+            const double B = pair_budget(a, b);
             if ((strain(k) + moves[k]) / B > kRegionStrainShare) {
                 if (state[a] == State::Vertex) add(a);
                 add(b);
@@ -1372,29 +1376,20 @@ struct DeformingMesh::Impl {
         const PointGrid grid = vertex_grid(R);
         std::vector<char> in(mesh.faces_size(), 0);
         std::vector<Face> near;
-        auto box_of = [&](Face f) {
-            Bbox3 b;
-            for (Vertex x : mesh.face_vertices(f)) b.extend(mesh.position(x));
-            return b;
+        auto take = [&](Face g) {
+            if (!in[g.idx()]) {
+                in[g.idx()] = 1;
+                near.push_back(g);
+            }
+            return false;
         };
         for (Face f : changed) {
-            const Bbox3 b = box_of(f);
-            const Point3 c = (b.min + b.max) * 0.5;
+            const Bbox3 b = detail::face_box(mesh, f);
             const Vec3 half = (b.max - b.min) * 0.5;
             const double reach = std::max({half.x, half.y, half.z}) + 2 * R * (1 + 1e-9);
-            grid.for_each_candidate(c, reach, [&](std::uint32_t s) {
-                for (Halfedge h : mesh.outgoing_halfedges(vert_of[s])) {
-                    const Face g = mesh.face(h);
-                    if (!g.is_valid() || in[g.idx()]) continue;
-                    if (!box_of(g).overlaps(b)) continue;
-                    in[g.idx()] = 1;
-                    near.push_back(g);
-                }
-            });
-            if (!in[f.idx()]) {
-                in[f.idx()] = 1;
-                near.push_back(f);
-            }
+            detail::for_each_face_meeting(mesh, grid, (b.min + b.max) * 0.5, reach, b,
+                                          [&](std::uint32_t s) { return vert_of[s]; }, take);
+            take(f);
         }
         return has_self_intersections(mesh, near);
     }

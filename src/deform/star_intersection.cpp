@@ -44,30 +44,16 @@ bool star_intersects(const SurfaceMesh& m, Vertex v, const PointGrid& grid, doub
         if (const Face f = m.face(h); f.is_valid()) star.push_back(f);
         box.extend(m.position(m.to_vertex(h)));
     }
-    auto overlaps = [&](Face g) {
-        Bbox3 b;
-        for (Vertex x : m.face_vertices(g)) b.extend(m.position(x));
-        return b.overlaps(box);
-    };
     // Faces met before (each face is seen from up to three of its vertices).
     std::vector<Face> tested;
     bool hit = false;
-    grid.for_each_candidate(m.position(v), radius, [&](std::uint32_t id) {
-        if (hit) return;
-        const Vertex w = vertex_of(id);
-        if (!w.is_valid() || w.idx() >= m.vertices_size() || m.is_deleted(w) || w == v) return;
-        for (Halfedge h : m.outgoing_halfedges(w)) {
-            const Face g = m.face(h);
-            if (!g.is_valid() || !overlaps(g)) continue;
-            if (std::find(star.begin(), star.end(), g) != star.end()) continue;
-            if (std::find(tested.begin(), tested.end(), g) != tested.end()) continue;
-            tested.push_back(g);
-            for (Face f : star)
-                if (faces_meet(m, f, g)) {
-                    hit = true;
-                    return;
-                }
-        }
+    for_each_face_meeting(m, grid, m.position(v), radius, box, vertex_of, [&](Face g) {
+        if (std::find(star.begin(), star.end(), g) != star.end()) return false;
+        if (std::find(tested.begin(), tested.end(), g) != tested.end()) return false;
+        tested.push_back(g);
+        for (Face f : star)
+            if (faces_meet(m, f, g)) return hit = true;
+        return false;
     });
     return hit;
 }

@@ -48,27 +48,23 @@ public:
     /// An empty dynamic grid. \pre cell > 0 and finite.
     explicit PointGrid(double cell = 1.0) { reset(cell); }
 
-    /// A static grid of the ids 0 .. points.size() - 1 at `points`.
-    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points) {
-        PointGrid g(cell);
-        g.build(points.size(), [&](std::size_t i) { return points[i]; },
-                [](std::size_t i) { return static_cast<std::uint32_t>(i); });
-        return g;
-    }
-    /// A static grid of `ids`, id i at points[i]. \pre every id < points.size().
-    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points,
-                                        std::span<const std::uint32_t> ids) {
-        PointGrid g(cell);
-        g.build(ids.size(), [&](std::size_t k) { return points[ids[k]]; },
-                [&](std::size_t k) { return ids[k]; });
-        return g;
-    }
     /// A bulk grid of n ids: id(k) at at(k), k = 0 .. n - 1 (ids need not be dense).
     template <class At, class Id>
     [[nodiscard]] static PointGrid bulk(double cell, std::size_t n, At&& at, Id&& id) {
         PointGrid g(cell);
         g.build(n, at, id);
         return g;
+    }
+    /// A bulk grid of the ids 0 .. points.size() - 1 at `points`.
+    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points) {
+        return bulk(cell, points.size(), [&](std::size_t i) { return points[i]; },
+                    [](std::size_t i) { return static_cast<std::uint32_t>(i); });
+    }
+    /// A bulk grid of `ids`, id i at points[i]. \pre every id < points.size().
+    [[nodiscard]] static PointGrid bulk(double cell, std::span<const Point3> points,
+                                        std::span<const std::uint32_t> ids) {
+        return bulk(cell, ids.size(), [&](std::size_t k) { return points[ids[k]]; },
+                    [&](std::size_t k) { return ids[k]; });
     }
 
     /// pos(id) = points[id]: the `pos` of the queries below for positions held in an array.
@@ -250,7 +246,7 @@ private:
     template <class F>
     bool visit_cell(std::int64_t x, std::int64_t y, std::int64_t z, F&& f) const {
         const CellKey k{x, y, z};
-        const std::uint64_t h = hash_ints(x, y, z);  // once, for the table and the filter
+        const std::uint64_t h = hash(k);  // once, for the table and the filter
         if (!table_.empty()) {
             const Cell& c = table_[slot(k, h)];
             if (c.begin != kNone)
