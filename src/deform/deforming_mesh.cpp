@@ -219,6 +219,7 @@ struct DeformingMesh::Impl {
 
     void attach(SampleId p, SampleId w) {
         if (p < strain_d.size()) strain_d[p] = 0;  // a new pair
+        pairs_dirty = true;
         state[p] = State::Dormant;
         owner[p] = w;
         dpos[p] = static_cast<std::uint32_t>(dl[w].size());
@@ -240,6 +241,7 @@ struct DeformingMesh::Impl {
         }
         state[s] = State::Vertex;
         owner[s] = kNoSample;
+        pairs_dirty = true;
         vert_of[s] = v;
         vsample[v] = s;
     }
@@ -1061,29 +1063,59 @@ struct DeformingMesh::Impl {
     double& strain(std::size_t k) {
         return k < strain_e.size() ? strain_e[k] : strain_d[k - strain_e.size()];
     }
+    /// The pairs of for_each_pair(), in its order, as flat arrays for the loops that run at
+    /// every sub-step (strain_ratio(), over_budget(), move_samples()): pair index k, ends a
+    /// and b, budget pair_budget(a, b). Built on first use after an update, a mesh install or
+    /// a dormant sample's move (pairs_dirty), so a sub-step without an update reads no mesh.
+    struct PairTable {
+        std::vector<std::size_t> key;
+        std::vector<SampleId> a, b;
+        std::vector<double> budget;
+    };
+    PairTable pairs;
+    bool pairs_dirty = true;
+    const PairTable& pair_table() {
+        if (pairs_dirty) {
+            pairs.key.clear();
+            pairs.a.clear();
+            pairs.b.clear();
+            pairs.budget.clear();
+            for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
+                pairs.key.push_back(k);
+                pairs.a.push_back(a);
+                pairs.b.push_back(b);
+                pairs.budget.push_back(pair_budget(a, b));
+            });
+            pairs_dirty = false;
+        }
+        return pairs;
+    }
     /// How far a and b move relative to each other when every sample goes from pos to `to`,
     /// apart from the rotation `turn` of the whole (a rigid motion moves no pair).
     /// The smaller of the plain relative displacement (spec §10.1's D, which the paper's
     /// model bounds by 2 lambda per unit) and the one measured after the turn.
     [[nodiscard]] double relative_move(const std::vector<Point3>& to, SampleId a, SampleId b,
-                                       const detail::Mat3& turn) const {
+                                       const detail::Mat3& turn, bool turned = true) const {
         const Vec3 e0 = pos[b] - pos[a], e1 = to[b] - to[a];
-        return std::min(norm(e1 - e0), norm(e1 - turn * e0));
+        const double plain = norm(e1 - e0);
+        return turned ? std::min(plain, norm(e1 - turn * e0)) : plain;
     }
     /// Largest (strain + relative move) / budget over the pairs when every sample goes from
     /// pos to `to` (the move alone, when !with_strain). `moves` (when given) receives each
-    /// pair's relative move by pair index, for over_budget() and move_samples() while the
-    /// mesh stays as it is.
+    /// pair's relative move by its row in pair_table(), for over_budget() and move_samples()
+    /// while the mesh stays as it is.
     [[nodiscard]] double strain_ratio(const std::vector<Point3>& to, const detail::Mat3& turn, bool with_strain,
                                       std::vector<double>* moves = nullptr) {
+        const PairTable& pt = pair_table();
+        const std::size_t n = pt.key.size();
+        if (moves) moves->resize(n);
+        const bool turned = !turn.is_identity();  // else both measures of relative_move() agree
         double worst = 0;
-        if (moves) moves->resize(mesh.edges_size() + pos.size());
-        for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
-            const double B = pair_budget(a, b);
-            const double m = relative_move(to, a, b, turn);
-            if (moves) (*moves)[k] = m;
-            worst = std::max(worst, ((with_strain ? strain(k) : 0.0) + m) / B);
-        });
+        for (std::size_t i = 0; i < n; ++i) {
+            const double m = relative_move(to, pt.a[i], pt.b[i], turn, turned);
+            if (moves) (*moves)[i] = m;
+            worst = std::max(worst, ((with_strain ? strain(pt.key[i]) : 0.0) + m) / pt.budget[i]);
+        }
         return worst;
     }
     /// A local update takes in the pairs past this share of their budget, not only those over
@@ -1104,20 +1136,21 @@ struct DeformingMesh::Impl {
                 out.push_back(s);
             }
         };
-        for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
-            const double B = pair_budget(a, b);
-            if ((strain(k) + moves[k]) / B > kRegionStrainShare) {
-                if (state[a] == State::Vertex) add(a);
-                add(b);
+        const PairTable& pt = pair_table();
+        for (std::size_t i = 0; i < pt.key.size(); ++i)
+            if ((strain(pt.key[i]) + moves[i]) / pt.budget[i] > kRegionStrainShare) {
+                if (state[pt.a[i]] == State::Vertex) add(pt.a[i]);
+                add(pt.b[i]);
             }
-        });
         return out;
     }
     /// Moves every sample that is not dead to `to` (slot order); with `moves` (strain_ratio()'s
     /// on this mesh and `to`), each pair's relative move is added to its strain.
     void move_samples(const std::vector<Point3>& to, const std::vector<double>* moves = nullptr) {
-        if (moves)
-            for_each_pair([&](std::size_t k, SampleId, SampleId) { strain(k) += (*moves)[k]; });
+        if (moves) {
+            const PairTable& pt = pair_table();
+            for (std::size_t i = 0; i < pt.key.size(); ++i) strain(pt.key[i]) += (*moves)[i];
+        }
         for (SampleId s = 0; s < pos.size(); ++s)
             if (state[s] != State::Dead) pos[s] = to[s];
         for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
@@ -1218,6 +1251,7 @@ struct DeformingMesh::Impl {
         rep.t = t;
         rep.emergency = !internal && emergency_requested;
         cur = {};
+        pairs_dirty = true;
         std::fill(refused.begin(), refused.end(), 0);
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
@@ -1251,6 +1285,7 @@ struct DeformingMesh::Impl {
                                                 std::to_string(rep.R_after / rep.R_before) + "x), vertices " +
                                                 std::to_string(rep.vertices_before) + " -> " +
                                                 std::to_string(mesh.n_vertices()));
+        pairs_dirty = true;  // new edges, dormant pairs and budgets
         rep.next_step = next;
         rep.samples = live;
         rep.vertices = mesh.n_vertices();
@@ -1312,14 +1347,16 @@ struct DeformingMesh::Impl {
         finish_normals();
         clear_region();
     }
+    /// The face normals of the update's end (ref_normals) and its folded edges, from one pass
+    /// over the faces.
     void finish_normals() {
-        folded_at_step = folded_edges();
+        raw_normals.assign(mesh.faces_size(), Vec3{});
+        for (Face f : mesh.faces()) raw_normals[f.idx()] = face_normal(f);
+        folded_at_step = folded_edges([&](Face f) { return raw_normals[f.idx()]; });
         ref_normals.assign(mesh.faces_size(), Vec3{});
-        for (Face f : mesh.faces()) {
-            const auto vs = mesh.face_vertices(f);
-            ref_normals[f.idx()] = triangle_normal(mesh.position(vs[0]), mesh.position(vs[1]), mesh.position(vs[2]));
-        }
+        for (Face f : mesh.faces()) ref_normals[f.idx()] = normalized(raw_normals[f.idx()]);
     }
+    std::vector<Vec3> raw_normals;  ///< scratch of finish_normals()
     /// The samples of an edge's ends, smaller first.
     [[nodiscard]] std::array<SampleId, 2> ends_of(Edge e) const {
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
@@ -1445,13 +1482,18 @@ struct DeformingMesh::Impl {
     /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90);
     /// crease edges, sharp by design, do not count.
     std::size_t folded_edges() const {
+        return folded_edges([&](Face f) { return face_normal(f); });
+    }
+    /// The same, with `normal(f)` giving face_normal(f).
+    template <class Normal>
+    std::size_t folded_edges(Normal&& normal) const {
         std::size_t n = 0;
         const auto locked = locked_edges(mesh);
         for (Edge e : mesh.edges()) {
             if (locked.is_valid() && locked[e]) continue;
             const Face f0 = mesh.face(SurfaceMesh::halfedge(e, 0)), f1 = mesh.face(SurfaceMesh::halfedge(e, 1));
             if (!f0.is_valid() || !f1.is_valid()) continue;
-            if (dot(face_normal(f0), face_normal(f1)) <= 0) ++n;
+            if (dot(normal(f0), normal(f1)) <= 0) ++n;
         }
         return n;
     }
@@ -1650,6 +1692,7 @@ struct DeformingMesh::Impl {
         mesh = std::move(m);
         touch();
         flips_settled = false;
+        pairs_dirty = true;
         // A caller's mesh may carry the properties already (e.g. another DeformingMesh's mesh).
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);

@@ -16,6 +16,10 @@ namespace dynmesh::detail {
 struct Mat3 {
     Vec3 r[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     [[nodiscard]] Vec3 operator*(const Vec3& v) const { return {dot(r[0], v), dot(r[1], v), dot(r[2], v)}; }
+    /// Exactly the identity (then M v = v bit for bit, for finite v).
+    [[nodiscard]] bool is_identity() const {
+        return r[0] == Vec3{1, 0, 0} && r[1] == Vec3{0, 1, 0} && r[2] == Vec3{0, 0, 1};
+    }
 };
 
 /// The rotation about the unit axis by angle a (Rodrigues).

@@ -408,12 +408,6 @@ Halfedge SurfaceMesh::find_halfedge(Vertex a, Vertex b) const {
     return {};
 }
 
-std::array<Vertex, 3> SurfaceMesh::face_vertices(Face f) const {
-    const Halfedge h = halfedge(f);
-    const Halfedge n = next(h);
-    return {to_vertex(h), to_vertex(n), to_vertex(next(n))};
-}
-
 std::vector<Vertex> SurfaceMesh::neighbors(Vertex v) const {
     std::vector<Vertex> out;
     for (Halfedge h : outgoing_halfedges(v)) out.push_back(to_vertex(h));

@@ -228,7 +228,10 @@ public:
         return h.is_valid() ? edge(h) : Edge();
     }
     /// The three corners of f in counter-clockwise order, starting at to_vertex(halfedge(f)).
-    [[nodiscard]] std::array<Vertex, 3> face_vertices(Face f) const;
+    [[nodiscard]] std::array<Vertex, 3> face_vertices(Face f) const {
+        const Halfedge h = halfedge(f), n = next(h);
+        return {to_vertex(h), to_vertex(n), to_vertex(next(n))};
+    }
     /// The link of v: its neighbours in counter-clockwise order.
     [[nodiscard]] std::vector<Vertex> neighbors(Vertex v) const;
     /// The vertex opposite halfedge h in its face (invalid for a boundary halfedge).
