@@ -2065,6 +2065,21 @@ CheckReport DeformingMesh::check_invariants(const InvariantOptions& options) con
         else if (I.mesh.position(v) != I.pos[s])
             fail("vertex of " + I.idstr(s) + " is not at its sample's position");
     }
+    // the sub-step bookkeeping covers the pairs of this mesh: a pair table not due for a
+    // rebuild lists every mesh edge and dormant pair, in order, with its current budget
+    if (!I.pairs_dirty) {
+        const auto& pt = I.pairs;
+        std::size_t i = 0, stale = 0;
+        I.for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
+            if (i >= pt.key.size() || pt.key[i] != k || pt.a[i] != a || pt.b[i] != b ||
+                pt.budget[i] != I.pair_budget(a, b))
+                ++stale;
+            ++i;
+        });
+        if (stale > 0 || i != pt.key.size())
+            fail("the sub-step pair table is stale: " + std::to_string(stale) + " of " + std::to_string(i) +
+                 " pairs differ, " + std::to_string(pt.key.size()) + " listed");
+    }
     // dormant lists partition P \ Vert
     std::size_t in_lists = 0;
     for (SampleId s = 0; s < I.pos.size(); ++s) {
