@@ -219,7 +219,6 @@ struct DeformingMesh::Impl {
 
     void attach(SampleId p, SampleId w) {
         if (p < strain_d.size()) strain_d[p] = 0;  // a new pair
-        pairs_dirty = true;
         state[p] = State::Dormant;
         owner[p] = w;
         dpos[p] = static_cast<std::uint32_t>(dl[w].size());
@@ -241,7 +240,6 @@ struct DeformingMesh::Impl {
         }
         state[s] = State::Vertex;
         owner[s] = kNoSample;
-        pairs_dirty = true;
         vert_of[s] = v;
         vsample[v] = s;
     }
@@ -1065,8 +1063,9 @@ struct DeformingMesh::Impl {
     }
     /// The pairs of for_each_pair(), in its order, as flat arrays for the loops that run at
     /// every sub-step (strain_ratio(), over_budget(), move_samples()): pair index k, ends a
-    /// and b, budget pair_budget(a, b). Built on first use after an update, a mesh install or
-    /// a dormant sample's move (pairs_dirty), so a sub-step without an update reads no mesh.
+    /// and b, budget pair_budget(a, b). Invalid from the start of an update or a mesh install
+    /// (pairs_dirty) and rebuilt on the next read, so a sub-step without an update reads no
+    /// mesh.
     struct PairTable {
         std::vector<std::size_t> key;
         std::vector<SampleId> a, b;
@@ -1251,7 +1250,7 @@ struct DeformingMesh::Impl {
         rep.t = t;
         rep.emergency = !internal && emergency_requested;
         cur = {};
-        pairs_dirty = true;
+        pairs_dirty = true;  // new edges, dormant pairs and budgets (nothing in an update reads the table)
         std::fill(refused.begin(), refused.end(), 0);
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
@@ -1285,7 +1284,6 @@ struct DeformingMesh::Impl {
                                                 std::to_string(rep.R_after / rep.R_before) + "x), vertices " +
                                                 std::to_string(rep.vertices_before) + " -> " +
                                                 std::to_string(mesh.n_vertices()));
-        pairs_dirty = true;  // new edges, dormant pairs and budgets
         rep.next_step = next;
         rep.samples = live;
         rep.vertices = mesh.n_vertices();
@@ -1350,13 +1348,11 @@ struct DeformingMesh::Impl {
     /// The face normals of the update's end (ref_normals) and its folded edges, from one pass
     /// over the faces.
     void finish_normals() {
-        raw_normals.assign(mesh.faces_size(), Vec3{});
-        for (Face f : mesh.faces()) raw_normals[f.idx()] = face_normal(f);
-        folded_at_step = folded_edges([&](Face f) { return raw_normals[f.idx()]; });
         ref_normals.assign(mesh.faces_size(), Vec3{});
-        for (Face f : mesh.faces()) ref_normals[f.idx()] = normalized(raw_normals[f.idx()]);
+        for (Face f : mesh.faces()) ref_normals[f.idx()] = face_normal(f);
+        folded_at_step = folded_edges([&](Face f) { return ref_normals[f.idx()]; });
+        for (Vec3& n : ref_normals) n = normalized(n);
     }
-    std::vector<Vec3> raw_normals;  ///< scratch of finish_normals()
     /// The samples of an edge's ends, smaller first.
     [[nodiscard]] std::array<SampleId, 2> ends_of(Edge e) const {
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
