@@ -109,6 +109,41 @@ public:
         return h2 > 1e-18 * lmax_ * lmax_ ? h2 : 0.0;
     }
 
+    /// The largest dot(n, normal of g) over the triangles g of the mesh nearest to q: those
+    /// within rounding of the smallest distance, so that where q's nearest point is on an edge
+    /// or a vertex every triangle around it counts (any normal of the surface there). Searched
+    /// among the triangles around the vertex a walk from `hint` (kNone: the nearest vertex)
+    /// ends at and around its neighbours, where the closest triangle nearly always is.
+    /// `scratch` is reused between calls.
+    [[nodiscard]] double nearest_facing(const Point3& q, std::uint32_t hint, const Vec3& n,
+                                        std::vector<std::pair<double, std::uint32_t>>& scratch) const {
+        if (tris_.empty()) return 0.0;
+        if (hint == kNone || begin_[hint + 1] == begin_[hint]) hint = nearest_vertex(q);
+        const std::uint32_t w = walk(q, hint);
+        scratch.clear();
+        double best = std::numeric_limits<double>::infinity();
+        auto fan = [&](std::uint32_t v) {
+            for (std::uint32_t k = begin_[v]; k < begin_[v + 1]; ++k) {
+                const Tri& t = tris_[star_[k]];
+                const double d2 = sq_dist_to_triangle(q, pts_[t[0]], pts_[t[1]], pts_[t[2]]);
+                best = std::min(best, d2);
+                scratch.emplace_back(d2, star_[k]);
+            }
+        };
+        fan(w);
+        for (std::uint32_t k = begin_[w]; k < begin_[w + 1]; ++k)
+            for (std::uint32_t u : tris_[star_[k]])
+                if (u != w) fan(u);
+        const double tie = best * (1 + 1e-9) + 1e-18 * lmax_ * lmax_;
+        double facing = -std::numeric_limits<double>::infinity();
+        for (const auto& [d2, f] : scratch)
+            if (d2 <= tie) {
+                const Tri& t = tris_[f];
+                facing = std::max(facing, dot(n, triangle_normal(pts_[t[0]], pts_[t[1]], pts_[t[2]])));
+            }
+        return facing;
+    }
+
 private:
     /// Squared distance from q to the fan of v; stops as soon as it is <= stop.
     [[nodiscard]] double star_sq(const Point3& q, std::uint32_t v, double stop) const {
@@ -303,7 +338,9 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
             if (locked[e])
                 for (int i = 0; i < 2; ++i) on_crease[dense[mesh.vertex(e, i).idx()]] = 1;
 
-    // Faces: circumradius, angles, radius-edge, normal deviation.
+    // Faces: circumradius, angles, radius-edge, normal deviation, inversion.
+    const LocalDistance to_ref(refpts_, triangles_, star_begin_, star_, ref_lmax_, ref_mean_edge_);
+    std::vector<std::pair<double, std::uint32_t>> scratch;
     double R = 0, min_angle = kPi, min_angle_off = kPi, max_re = 0, dev_max = 0, dev_sum = 0;
     std::size_t dev_n = 0, inverted = 0;
     for (const Tri& t : tris) {
@@ -314,16 +351,18 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         if (!on_crease[t[0]] && !on_crease[t[1]] && !on_crease[t[2]]) min_angle_off = std::min(min_angle_off, angle);
         max_re = std::max(max_re, radius_edge_ratio(a, b, c));
         const Vec3 nf = triangle_normal(a, b, c);
-        Vec3 sum{};
         for (const std::uint32_t x : t) {
-            const Vec3& nt = vn[x];
-            sum += nt;
-            const double d = rad_to_deg(angle_between(nf, nt));
+            const double d = rad_to_deg(angle_between(nf, vn[x]));
             dev_max = std::max(dev_max, d);
             dev_sum += d;
             ++dev_n;
         }
-        if (dot(nf, sum) < 0) ++inverted;
+        // Inverted: facing away from every normal of Sigma(t) at the point nearest to the
+        // barycentre. Not against the true normals at the three vertices: at a sharp edge or
+        // corner of the input these are averages, and a stretched coarse mesh then has
+        // triangles of Sigma(t) itself facing away from them (fandisk stretched x3: 2 faces of
+        // the carried reference; elephant.off: 3).
+        if (to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
     }
     r.R = R;
     r.min_angle_deg = tris.empty() ? nan : rad_to_deg(min_angle);
@@ -401,8 +440,6 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
             queries.push_back((pts[t[0]] + pts[t[1]] + pts[t[2]]) / 3.0);
             hints.push_back(rank_of[t[0]]);
         }
-        const LocalDistance to_ref(refpts_, triangles_, star_begin_, star_, ref_lmax_,
-                                   ref_mean_edge_);
         const double b2 = to_ref.max_sq(queries, hints);
         if (a2_future.valid()) a2 = a2_future.get();
         r.hausdorff = std::sqrt(std::max(a2, b2));
