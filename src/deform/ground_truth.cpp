@@ -357,12 +357,17 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
             dev_sum += d;
             ++dev_n;
         }
-        // Inverted: facing away from every normal of Sigma(t) at the point nearest to the
-        // barycentre. Not against the true normals at the three vertices: at a sharp edge or
-        // corner of the input these are averages, and a stretched coarse mesh then has
-        // triangles of Sigma(t) itself facing away from them (fandisk stretched x3: 2 faces of
-        // the carried reference; elephant.off: 3).
-        if (to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
+        // Inverted: facing away both from the true normals at its corners (their sum) and
+        // from every normal of Sigma(t) at the point nearest to its barycentre. The corners'
+        // normals alone are averages at a sharp edge or corner of the input, and a stretched
+        // coarse mesh then has triangles of Sigma(t) itself facing away from them (fandisk
+        // stretched x3: 2 faces of the carried reference); the nearest point alone can lie on
+        // one face of a sharp edge that a triangle across the edge makes more than 90 degrees
+        // with, while it agrees with the surface at its corners.
+        Vec3 sum{};
+        for (const std::uint32_t x : t) sum += vn[x];
+        const bool away = dot(nf, sum) < 0;
+        if (away && to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
     }
     r.R = R;
     r.min_angle_deg = tris.empty() ? nan : rad_to_deg(min_angle);

@@ -84,13 +84,13 @@ TEST(GroundTruth, MeshOfTheInitialSampleIsCloseToSigma) {
     EXPECT_GT(f.normal_dev_mean_deg, 150.0);
 }
 
-TEST(GroundTruth, InvertedMeansFacingAwayFromTheNearestSurface) {
+TEST(GroundTruth, InvertedMeansFacingAwayAtTheCornersAndAtTheNearestSurface) {
     // fandisk.off stretched x3: at sharp edges the true normals of the vertices are averages of
     // their faces', and stretched 3:1 some faces of Sigma(t) itself point away from the
     // averages at their corners (a test against the vertex normals counts 2 faces of the
-    // carried reference). Against the surface nearest to each face, neither the reference nor
-    // the carried input has an inverted face, and the input with its orientation reversed has
-    // nothing else.
+    // carried reference). Counted only where a face also points away from the surface nearest
+    // to its middle, neither the reference nor the carried input has an inverted face, and the
+    // input with its orientation reversed has nothing else.
     ScenarioOptions o;
     o.steps = 200;
     o.warp = "stretch";

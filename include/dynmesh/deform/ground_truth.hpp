@@ -76,10 +76,11 @@ struct FrameMetrics {
     double hausdorff_over_h = 0;
     /// Intersecting face pairs (only with MeasureOptions::self_intersections; else 0).
     std::size_t self_intersections = 0;
-    /// Faces whose normal points away from Sigma(t) where it is nearest to them: dot(n_face,
-    /// n) < 0 for every normal n of Sigma(t) at the point of Sigma(t) nearest to the face's
-    /// barycentre (every face of the reference around that point when it lies on an edge or a
-    /// vertex of the reference).
+    /// Faces whose normal points away from Sigma(t) both at their corners and at their
+    /// middle: dot(n_face, n_a + n_b + n_c) < 0 with the true normals at the vertices, and
+    /// dot(n_face, n) < 0 for every normal n of Sigma(t) at the point of Sigma(t) nearest to
+    /// the face's barycentre (every face of the reference around that point when it lies on
+    /// an edge or a vertex of the reference).
     std::size_t inverted = 0;
 };
 
