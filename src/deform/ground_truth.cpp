@@ -131,9 +131,11 @@ public:
             }
         };
         fan(w);
-        for (std::uint32_t k = begin_[w]; k < begin_[w + 1]; ++k)
-            for (std::uint32_t u : tris_[star_[k]])
-                if (u != w) fan(u);
+        // Each neighbour once: the corner after w in each triangle of its (closed) fan.
+        for (std::uint32_t k = begin_[w]; k < begin_[w + 1]; ++k) {
+            const Tri& t = tris_[star_[k]];
+            fan(t[0] == w ? t[1] : t[1] == w ? t[2] : t[0]);
+        }
         const double tie = best * (1 + 1e-9) + 1e-18 * lmax_ * lmax_;
         double facing = -std::numeric_limits<double>::infinity();
         for (const auto& [d2, f] : scratch)
@@ -351,7 +353,9 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         if (!on_crease[t[0]] && !on_crease[t[1]] && !on_crease[t[2]]) min_angle_off = std::min(min_angle_off, angle);
         max_re = std::max(max_re, radius_edge_ratio(a, b, c));
         const Vec3 nf = triangle_normal(a, b, c);
+        Vec3 sum{};
         for (const std::uint32_t x : t) {
+            sum += vn[x];
             const double d = rad_to_deg(angle_between(nf, vn[x]));
             dev_max = std::max(dev_max, d);
             dev_sum += d;
@@ -364,10 +368,7 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         // stretched x3: 2 faces of the carried reference); the nearest point alone can lie on
         // one face of a sharp edge that a triangle across the edge makes more than 90 degrees
         // with, while it agrees with the surface at its corners.
-        Vec3 sum{};
-        for (const std::uint32_t x : t) sum += vn[x];
-        const bool away = dot(nf, sum) < 0;
-        if (away && to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
+        if (dot(nf, sum) < 0 && to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
     }
     r.R = R;
     r.min_angle_deg = tris.empty() ? nan : rad_to_deg(min_angle);
