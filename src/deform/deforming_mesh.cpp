@@ -1061,6 +1061,9 @@ struct DeformingMesh::Impl {
     double& strain(std::size_t k) {
         return k < strain_e.size() ? strain_e[k] : strain_d[k - strain_e.size()];
     }
+    [[nodiscard]] double strain(std::size_t k) const {
+        return k < strain_e.size() ? strain_e[k] : strain_d[k - strain_e.size()];
+    }
     /// The pairs of for_each_pair(), in its order, as flat arrays for the loops that run at
     /// every sub-step (strain_ratio(), over_budget(), move_samples()): pair index k, ends a
     /// and b, budget pair_budget(a, b). Invalid from the start of an update or a mesh install
@@ -1073,19 +1076,56 @@ struct DeformingMesh::Impl {
     };
     PairTable pairs;
     bool pairs_dirty = true;
+    /// The samples the current unit moves (its `to` differs from pos; every live sample when
+    /// the unit turns the whole), with a flag per slot, and the rows of the pairs with an end
+    /// among them (moving_pairs()): the only pairs whose strain a sub-step changes, so that a
+    /// sub-step costs O(|moving|) and not O(|P|) (spec §10.1: a frame costs O(n |U| + |Vert|)).
+    /// Rebuilt after every update (pairs_dirty) while the unit lasts.
+    std::vector<SampleId> moving;
+    std::vector<char> is_moving;
+    PairTable mpairs;
+    bool mpairs_dirty = true;
+    static void clear(PairTable& t) {
+        t.key.clear();
+        t.a.clear();
+        t.b.clear();
+        t.budget.clear();
+    }
+    void push(PairTable& t, std::size_t k, SampleId a, SampleId b) const {
+        t.key.push_back(k);
+        t.a.push_back(a);
+        t.b.push_back(b);
+        t.budget.push_back(pair_budget(a, b));
+    }
+    /// The pairs of for_each_pair() with an end in `moving`, each once: a vertex's edges (an
+    /// edge between two moving vertices from its smaller end) and its dormant samples that do
+    /// not move, and a moving dormant sample with its owner.
+    const PairTable& moving_pairs() {
+        if (pairs_dirty) mpairs_dirty = true;
+        if (!mpairs_dirty) return mpairs;
+        clear(mpairs);
+        const std::size_t ne = mesh.edges_size();
+        for (SampleId s : moving) {
+            if (state[s] == State::Vertex) {
+                for (Halfedge h : mesh.outgoing_halfedges(vert_of[s])) {
+                    const SampleId u = sid(mesh.to_vertex(h));
+                    if (!is_moving[u] || s < u) push(mpairs, SurfaceMesh::edge(h).idx(), s, u);
+                }
+                for (SampleId p : dl[s])
+                    if (!is_moving[p]) push(mpairs, ne + p, p, s);
+            } else if (state[s] == State::Dormant) {
+                push(mpairs, ne + s, s, owner[s]);
+            }
+        }
+        mpairs_dirty = false;
+        return mpairs;
+    }
     const PairTable& pair_table() {
         if (pairs_dirty) {
-            pairs.key.clear();
-            pairs.a.clear();
-            pairs.b.clear();
-            pairs.budget.clear();
-            for_each_pair([&](std::size_t k, SampleId a, SampleId b) {
-                pairs.key.push_back(k);
-                pairs.a.push_back(a);
-                pairs.b.push_back(b);
-                pairs.budget.push_back(pair_budget(a, b));
-            });
+            clear(pairs);
+            for_each_pair([&](std::size_t k, SampleId a, SampleId b) { push(pairs, k, a, b); });
             pairs_dirty = false;
+            mpairs_dirty = true;
         }
         return pairs;
     }
@@ -1103,9 +1143,8 @@ struct DeformingMesh::Impl {
     /// pos to `to` (the move alone, when !with_strain). `moves` (when given) receives each
     /// pair's relative move by its row in pair_table(), for over_budget() and move_samples()
     /// while the mesh stays as it is.
-    [[nodiscard]] double strain_ratio(const std::vector<Point3>& to, const detail::Mat3& turn, bool with_strain,
-                                      std::vector<double>* moves = nullptr) {
-        const PairTable& pt = pair_table();
+    [[nodiscard]] double strain_ratio(const PairTable& pt, const std::vector<Point3>& to, const detail::Mat3& turn,
+                                      bool with_strain, std::vector<double>* moves = nullptr) const {
         const std::size_t n = pt.key.size();
         if (moves) moves->resize(n);
         const bool turned = !turn.is_identity();  // else both measures of relative_move() agree
@@ -1123,10 +1162,13 @@ struct DeformingMesh::Impl {
     /// 200 units: 168 updates between sub-steps instead of 301, and no inverted triangle
     /// instead of one).
     static constexpr double kRegionStrainShare = 0.5;
+    /// substep_to(): a best-fit turn whose largest displacement is at most this share of the
+    /// budget is taken as none.
+    static constexpr double kNegligibleTurn = 0.01;
     /// The vertices (samples) at the ends of the pairs whose strain plus move to `to` exceeds
     /// kRegionStrainShare of their budget (for a dormant pair, its owner), each once.
     /// `moves`: from strain_ratio() on the same mesh and `to`.
-    [[nodiscard]] std::vector<SampleId> over_budget(const std::vector<double>& moves) {
+    [[nodiscard]] std::vector<SampleId> over_budget(const PairTable& pt, const std::vector<double>& moves) const {
         std::vector<SampleId> out;
         std::vector<char> seen(pos.size(), 0);
         auto add = [&](SampleId s) {
@@ -1135,7 +1177,6 @@ struct DeformingMesh::Impl {
                 out.push_back(s);
             }
         };
-        const PairTable& pt = pair_table();
         for (std::size_t i = 0; i < pt.key.size(); ++i)
             if ((strain(pt.key[i]) + moves[i]) / pt.budget[i] > kRegionStrainShare) {
                 if (state[pt.a[i]] == State::Vertex) add(pt.a[i]);
@@ -1145,14 +1186,23 @@ struct DeformingMesh::Impl {
     }
     /// Moves every sample that is not dead to `to` (slot order); with `moves` (strain_ratio()'s
     /// on this mesh and `to`), each pair's relative move is added to its strain.
-    void move_samples(const std::vector<Point3>& to, const std::vector<double>* moves = nullptr) {
-        if (moves) {
-            const PairTable& pt = pair_table();
-            for (std::size_t i = 0; i < pt.key.size(); ++i) strain(pt.key[i]) += (*moves)[i];
-        }
+    void move_samples(const std::vector<Point3>& to) {
         for (SampleId s = 0; s < pos.size(); ++s)
             if (state[s] != State::Dead) pos[s] = to[s];
         for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
+        touch();
+        flips_settled = false;
+    }
+    /// Moves the samples of `moving` to `to` (the others are there already), adding each
+    /// pair's relative move (`moves`, strain_ratio()'s on moving_pairs() and `to`) to its
+    /// strain.
+    void move_moving(const std::vector<Point3>& to, const std::vector<double>& moves) {
+        const PairTable& pt = moving_pairs();
+        for (std::size_t i = 0; i < pt.key.size(); ++i) strain(pt.key[i]) += moves[i];
+        for (SampleId s : moving) {
+            pos[s] = to[s];
+            if (state[s] == State::Vertex) mesh.position(vert_of[s]) = pos[s];
+        }
         touch();
         flips_settled = false;
     }
@@ -1173,7 +1223,7 @@ struct DeformingMesh::Impl {
         const std::vector<Point3> from = pos;
         const detail::RigidFit fit =
             detail::fit_rigid(from, to, [&](std::size_t s) { return state[s] != State::Dead; });
-        const double need = std::ceil(strain_ratio(to, fit.rotation(), false));
+        const double need = std::ceil(strain_ratio(pair_table(), to, fit.rotation(), false));
         std::size_t n = std::max<std::size_t>(1, min_n);
         if (need > 1) n = std::max(n, static_cast<std::size_t>(std::min(need, static_cast<double>(params.max_substeps))));
         n = std::min(n, params.max_substeps);
@@ -1185,12 +1235,39 @@ struct DeformingMesh::Impl {
             violation(Violation::SubstepCapHit, "the unit needs " + std::to_string(need) + " sub-steps; " +
                                                     std::to_string(n) + " used (max_substeps)");
         rep.substeps = n;
-        std::vector<Point3> at(pos.size());
-        const detail::Mat3 full = fit.rotation(), step = fit.rotation(1.0 / static_cast<double>(n));
+        // A turn that moves no sample by more than kNegligibleTurn of the budget is left out
+        // of the interpolation (a local motion fits a turn of numerical noise), so that the
+        // samples the unit leaves in place stay there at every sub-step.
+        detail::RigidFit path = fit;
+        if (path.angle != 0) {
+            double reach = 0;
+            for (SampleId s = 0; s < from.size(); ++s)
+                if (state[s] != State::Dead) reach = std::max(reach, sqnorm(from[s] - fit.c_from));
+            if (path.angle * std::sqrt(reach) <= kNegligibleTurn * budget()) path.angle = 0;
+        }
+        moving.clear();
+        is_moving.assign(pos.size(), 0);
+        for (SampleId s = 0; s < from.size(); ++s)
+            if (state[s] != State::Dead && (path.angle != 0 || to[s] != from[s])) {
+                moving.push_back(s);
+                is_moving[s] = 1;
+            }
+        mpairs_dirty = true;
+        // The pairs that do not move keep their strain through the unit (an update only resets
+        // it): their largest ratio, for the report.
+        double still = 0;
+        {
+            const PairTable& pt = pair_table();
+            for (std::size_t i = 0; i < pt.key.size(); ++i)
+                if (!is_moving[pt.a[i]] && !is_moving[pt.b[i]]) still = std::max(still, strain(pt.key[i]) / pt.budget[i]);
+        }
+        rep.max_strain_ratio = std::max(rep.max_strain_ratio, still);
+        std::vector<Point3> at = pos;
+        const detail::Mat3 full = path.rotation(), step = path.rotation(1.0 / static_cast<double>(n));
         std::vector<Vec3> res;  // each sample's move apart from the turn
-        if (fit.angle != 0 && n > 1) {
+        if (path.angle != 0 && n > 1) {
             res.resize(pos.size());
-            for (std::size_t s = 0; s < res.size(); ++s) res[s] = to[s] - fit.c_to - full * (from[s] - fit.c_from);
+            for (SampleId s : moving) res[s] = to[s] - fit.c_to - full * (from[s] - fit.c_from);
         }
         std::vector<double> moves;  // each pair's relative move in this sub-step
         // Clears the region when an update between sub-steps throws (finish_local() clears it
@@ -1205,21 +1282,21 @@ struct DeformingMesh::Impl {
         for (std::size_t k = 1; k <= n; ++k) {
             const double f = static_cast<double>(k) / static_cast<double>(n);
             if (k == n) {
-                at = to;
-            } else if (fit.angle == 0) {
-                for (std::size_t s = 0; s < at.size(); ++s) at[s] = from[s] + (to[s] - from[s]) * f;
+                for (SampleId s : moving) at[s] = to[s];
+            } else if (path.angle == 0) {
+                for (SampleId s : moving) at[s] = from[s] + (to[s] - from[s]) * f;
             } else {
-                const detail::Mat3 turn = fit.rotation(f);
+                const detail::Mat3 turn = path.rotation(f);
                 const Point3 c = fit.c_from + (fit.c_to - fit.c_from) * f;
-                for (std::size_t s = 0; s < at.size(); ++s) at[s] = c + turn * (from[s] - fit.c_from) + res[s] * f;
+                for (SampleId s : moving) at[s] = c + turn * (from[s] - fit.c_from) + res[s] * f;
             }
-            double ratio = strain_ratio(at, step, true, &moves);
+            double ratio = strain_ratio(moving_pairs(), at, step, true, &moves);
             if (ratio > 1) {
                 if (params.local_updates) {
                     // U: the ends of the pairs past kRegionStrainShare of their budget (a
                     // dormant pair: its owner), and their 2-ring; global when that is more than
                     // half of the mesh.
-                    const std::vector<SampleId> seeds = over_budget(moves);
+                    const std::vector<SampleId> seeds = over_budget(moving_pairs(), moves);
                     set_region(seeds);
                     guard.armed = true;
                     if (2 * region_ids.size() > mesh.n_vertices()) {
@@ -1232,10 +1309,10 @@ struct DeformingMesh::Impl {
                 const DeformUpdateReport u = mesh_update(true);
                 rep.internal += u.counters;
                 ++rep.internal_updates;
-                ratio = strain_ratio(at, step, true, &moves);
+                ratio = strain_ratio(moving_pairs(), at, step, true, &moves);
             }
             rep.max_strain_ratio = std::max(rep.max_strain_ratio, ratio);
-            move_samples(at, &moves);
+            move_moving(at, moves);
         }
     }
 

@@ -59,6 +59,19 @@ SampleId smallest_vertex_sample(const DeformingMesh& dm) {
     return id;
 }
 
+/// The triangles of d's mesh as sample triples (smallest first), sorted.
+std::vector<std::array<SampleId, 3>> faces(const DeformingMesh& d) {
+    std::vector<std::array<SampleId, 3>> out;
+    for (Face f : d.mesh().faces()) {
+        const auto v = d.mesh().face_vertices(f);
+        std::array<SampleId, 3> s{d.sample_of(v[0]), d.sample_of(v[1]), d.sample_of(v[2])};
+        std::rotate(s.begin(), std::min_element(s.begin(), s.end()), s.end());
+        out.push_back(s);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 DeformOptions options(double h0) {
     DeformOptions o;
     o.lambda = 1e-9;  // the schedule never calls: only the budget decides
@@ -135,17 +148,6 @@ TEST(Substep, EqualsTheSlowMotionItStandsFor) {
     EXPECT_EQ(a.totals().insertions, b.totals().insertions);
     EXPECT_EQ(a.totals().removals, b.totals().removals);
     ASSERT_EQ(a.mesh().n_faces(), b.mesh().n_faces());
-    auto faces = [](const DeformingMesh& d) {
-        std::vector<std::array<SampleId, 3>> out;
-        for (Face f : d.mesh().faces()) {
-            const auto v = d.mesh().face_vertices(f);
-            std::array<SampleId, 3> s{d.sample_of(v[0]), d.sample_of(v[1]), d.sample_of(v[2])};
-            std::rotate(s.begin(), std::min_element(s.begin(), s.end()), s.end());
-            out.push_back(s);
-        }
-        std::sort(out.begin(), out.end());
-        return out;
-    };
     EXPECT_EQ(faces(a), faces(b));
     // The invariants hold after an update (between updates only up to the L3.6 constants).
     a.update();
@@ -202,6 +204,50 @@ TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
             EXPECT_EQ(local_updates, 0u);
             EXPECT_EQ(region, 0u);
         }
+    }
+}
+
+TEST(Substep, ALocalMotionIsSubSteppedAsTheSameMotionCarriedByATranslation) {
+    // A sub-step moves only the samples its unit moves and measures only the pairs with an
+    // end among them (spec §10.1: a frame costs O(n |U| + |Vert|)). A fast dimple leaves most
+    // of the sphere in place; the same dimple on a sphere that also slides by (8, 0, 0) per
+    // unit moves every sample, with the same relative motion. Both runs must take the same
+    // sub-steps and updates and end with the same triangles.
+    // Also a cap lifted by 0.02 with a sharp rim, where the dormant samples just outside it
+    // stay while their owners inside move.
+    const auto P0 = sphere_samples(4000, 13);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    const auto lifted = [&](double h) {
+        std::vector<Point3> out = P0;
+        for (Point3& p : out)
+            if (distance(p, Point3{0, 0, 1}) < 0.3) p = p * (1 + h);
+        return out;
+    };
+    for (const bool sharp : {false, true}) {
+        SCOPED_TRACE(sharp ? "lifted cap" : "dimple");
+        DeformingMesh still(P0, options(0.1), {.surface = &sphere});
+        DeformingMesh slid(P0, options(0.1), {.surface = &sphere});
+        std::size_t internal = 0;
+        for (int t = 1; t <= 4; ++t) {
+            const auto to =
+                sharp ? lifted(t % 2 == 1 ? 0.02 : 0.0) : dimpled(P0, t % 2 == 1 ? 0.15 : 0.0);
+            std::vector<Point3> moved = to;
+            for (Point3& p : moved) p.x += 8.0 * t;
+            const StepReport a = still.advance(t, to), b = slid.advance(t, moved);
+            EXPECT_GT(a.substeps, 1u) << "t = " << t;
+            EXPECT_EQ(a.substeps, b.substeps) << "t = " << t;
+            EXPECT_EQ(a.internal_updates, b.internal_updates) << "t = " << t;
+            EXPECT_EQ(a.region_vertices, b.region_vertices) << "t = " << t;
+            EXPECT_NEAR(a.max_strain_ratio, b.max_strain_ratio, 1e-9) << "t = " << t;
+            internal += a.internal_updates;
+            still.update();
+            slid.update();
+        }
+        ASSERT_GT(internal, 0u);
+        EXPECT_EQ(still.totals().flips, slid.totals().flips);
+        EXPECT_EQ(still.totals().insertions, slid.totals().insertions);
+        EXPECT_EQ(still.totals().removals, slid.totals().removals);
+        EXPECT_EQ(faces(still), faces(slid));
     }
 }
 
