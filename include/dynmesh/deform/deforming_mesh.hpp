@@ -97,6 +97,9 @@ struct DeformOptions {
     /// budget 2 R / kappa (R = largest circumradius at the last update). Every sample moves
     /// linearly between its positions at t - 1 and t, and an update runs before any sub-step
     /// that would take some pair's relative displacement since the last update beyond B.
+    /// A sub-step moves only the samples whose positions at t - 1 and t differ and measures
+    /// only the pairs with an end among them (a best-fit turn of the whole that moves no
+    /// sample by 1% of B is left out), so its cost follows the part that moves.
     /// When the motion meets the paper's model (relative displacement <= 2 lambda per unit,
     /// lambda <= R / kappa) this never fires and the run is the paper's. 1 turns it off (the
     /// paper's algorithm alone; floor(R / (kappa lambda)) = 0 is then Violation::StepTooShort).
