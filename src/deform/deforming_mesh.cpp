@@ -1080,11 +1080,13 @@ struct DeformingMesh::Impl {
     /// the unit turns the whole), with a flag per slot, and the rows of the pairs with an end
     /// among them (moving_pairs()): the only pairs whose strain a sub-step changes, so that a
     /// sub-step costs O(|moving|) and not O(|P|) (spec §10.1: a frame costs O(n |U| + |Vert|)).
-    /// Rebuilt after every update (pairs_dirty) while the unit lasts.
+    /// Rebuilt after every update (mpairs_dirty, invalidate_pairs()) while the unit lasts.
     std::vector<SampleId> moving;
     std::vector<char> is_moving;
     PairTable mpairs;
     bool mpairs_dirty = true;
+    /// Both tables are stale: new edges, dormant pairs and budgets (an update, a mesh install).
+    void invalidate_pairs() { pairs_dirty = mpairs_dirty = true; }
     static void clear(PairTable& t) {
         t.key.clear();
         t.a.clear();
@@ -1101,7 +1103,6 @@ struct DeformingMesh::Impl {
     /// edge between two moving vertices from its smaller end) and its dormant samples that do
     /// not move, and a moving dormant sample with its owner.
     const PairTable& moving_pairs() {
-        if (pairs_dirty) mpairs_dirty = true;
         if (!mpairs_dirty) return mpairs;
         clear(mpairs);
         const std::size_t ne = mesh.edges_size();
@@ -1125,7 +1126,6 @@ struct DeformingMesh::Impl {
             clear(pairs);
             for_each_pair([&](std::size_t k, SampleId a, SampleId b) { push(pairs, k, a, b); });
             pairs_dirty = false;
-            mpairs_dirty = true;
         }
         return pairs;
     }
@@ -1327,7 +1327,7 @@ struct DeformingMesh::Impl {
         rep.t = t;
         rep.emergency = !internal && emergency_requested;
         cur = {};
-        pairs_dirty = true;  // new edges, dormant pairs and budgets (nothing in an update reads the table)
+        invalidate_pairs();  // nothing in an update reads the tables
         std::fill(refused.begin(), refused.end(), 0);
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
@@ -1765,7 +1765,7 @@ struct DeformingMesh::Impl {
         mesh = std::move(m);
         touch();
         flips_settled = false;
-        pairs_dirty = true;
+        invalidate_pairs();
         // A caller's mesh may carry the properties already (e.g. another DeformingMesh's mesh).
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);
