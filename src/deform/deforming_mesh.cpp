@@ -24,6 +24,7 @@
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/reconstruct/advancing_front.hpp"
 #include "dynmesh/reconstruct/restricted_delaunay.hpp"
+#include "max_tree.hpp"
 #include "rigid_fit.hpp"
 #include "star_intersection.hpp"
 
@@ -87,18 +88,22 @@ std::string id_str(SampleId id) { return "sample " + std::to_string(id); }
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
 
-/// The largest triangle circumradius of m (infinite for a degenerate triangle), from
-/// R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2), one square root in all.
+/// The squared circumradius of face f (infinite for a degenerate triangle, 0 for NaN
+/// positions), from R^2 = |ab|^2 |bc|^2 |ca|^2 / (4 |ab x ac|^2).
+double circumradius2(const SurfaceMesh& m, Face f) {
+    const auto vs = m.face_vertices(f);
+    const Point3 &a = m.position(vs[0]), &b = m.position(vs[1]), &c = m.position(vs[2]);
+    const Vec3 ab = b - a, ac = c - a, bc = c - b;
+    const double den = 4 * sqnorm(cross(ab, ac));
+    const double num = sqnorm(ab) * sqnorm(bc) * sqnorm(ac);
+    const double r2 = den > 0 ? num / den : std::numeric_limits<double>::infinity();
+    return r2 >= 0 ? r2 : 0.0;
+}
+
+/// The largest triangle circumradius of m (infinite for a degenerate triangle).
 double largest_circumradius(const SurfaceMesh& m) {
     double r2max = 0;
-    for (Face f : m.faces()) {
-        const auto vs = m.face_vertices(f);
-        const Point3 &a = m.position(vs[0]), &b = m.position(vs[1]), &c = m.position(vs[2]);
-        const Vec3 ab = b - a, ac = c - a, bc = c - b;
-        const double den = 4 * sqnorm(cross(ab, ac));
-        const double num = sqnorm(ab) * sqnorm(bc) * sqnorm(ac);
-        r2max = std::max(r2max, den > 0 ? num / den : std::numeric_limits<double>::infinity());
-    }
+    for (Face f : m.faces()) r2max = std::max(r2max, circumradius2(m, f));
     return std::sqrt(r2max);
 }
 
@@ -244,17 +249,58 @@ struct DeformingMesh::Impl {
         vsample[v] = s;
     }
 
-    /// Largest circumradius, cached until the mesh changes (touch()).
-    [[nodiscard]] double max_circumradius() const {
-        if (!R_valid) {
-            R_cache = largest_circumradius(mesh);
-            R_valid = true;
-        }
-        return R_cache;
+    // ---- what changed in the mesh since a reader last looked ---------------------------------
+    /// The mesh logs the faces it changes (SurfaceMesh::face_log()), and moved_log the
+    /// vertices moved. A reader (the circumradius tree, the normals and strains at the end of
+    /// an update) keeps a Cursor and takes the changes since; `gen` advances when every face
+    /// may have changed (a renumbering, a new mesh, every vertex moved), and a reader then
+    /// starts over.
+    struct Cursor {
+        std::uint64_t gen = 0;
+        std::size_t faces = 0, moved = 0;
+    };
+    std::uint64_t gen = 1;
+    std::vector<Vertex> moved_log;
+    void all_changed() {
+        ++gen;
+        mesh.clear_face_log();
+        moved_log.clear();
     }
-    void touch() { R_valid = false; }
-    mutable double R_cache = 0;
-    mutable bool R_valid = false;
+    /// Calls f(face) for every face changed since `c` (made, relinked, deleted, or with a
+    /// moved vertex; possibly more than once) and returns true, or returns false without a
+    /// call when everything may have changed since. Brings `c` up to now.
+    template <class F>
+    bool changes_since(Cursor& c, F&& f) const {
+        const std::vector<std::uint32_t>& log = mesh.face_log();
+        const bool known = c.gen == gen && c.faces <= log.size() && c.moved <= moved_log.size();
+        if (known) {
+            for (std::size_t i = c.faces; i < log.size(); ++i) f(Face(log[i]));
+            for (std::size_t i = c.moved; i < moved_log.size(); ++i) {
+                const Vertex v = moved_log[i];
+                if (mesh.is_deleted(v)) continue;  // its faces were logged when it went
+                for (Halfedge h : mesh.outgoing_halfedges(v))
+                    if (const Face g = mesh.face(h); g.is_valid()) f(g);
+            }
+        }
+        c = Cursor{gen, log.size(), moved_log.size()};
+        return known;
+    }
+
+    /// Largest circumradius, from a max tree over the faces' squared circumradii kept current
+    /// through changes_since().
+    [[nodiscard]] double max_circumradius() const {
+        const bool known = changes_since(r2_cursor, [&](Face f) {
+            r2_tree.set(f.idx(), mesh.is_deleted(f) ? 0.0 : circumradius2(mesh, f));
+        });
+        if (!known) {
+            std::vector<double> r2(mesh.faces_size(), 0.0);
+            for (Face f : mesh.faces()) r2[f.idx()] = circumradius2(mesh, f);
+            r2_tree.assign(r2);
+        }
+        return std::sqrt(r2_tree.max());
+    }
+    mutable Cursor r2_cursor;
+    mutable detail::MaxTree r2_tree;
 
     /// `cell`, or when it is not positive and finite (R of a mesh with a degenerate triangle
     /// is infinite) the bounding-box diagonal of the vertices over the cube root of their
@@ -345,7 +391,6 @@ struct DeformingMesh::Impl {
             ao.split_edge = crease_edge_around(p);
             if (ao.split_edge.is_valid()) r = add_point(mesh, P(p), f, ao);
         }
-        touch();
         cur.flips += r.flips;
         if (r.kind == AddCase::Vertex || r.kind == AddCase::LockedEdge) {
             violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)) +
@@ -624,7 +669,6 @@ struct DeformingMesh::Impl {
     bool remove_sample(SampleId s, PointGrid* grid) {
         const Vertex v = vert_of[s];
         const RemoveResult r = remove_point(mesh, v, RemoveOptions{});
-        touch();
         cur.flips += r.flips;
         if (!r.removed) {
             violation(Violation::RemoveFailed, "vertex of " + idstr(s) + ": " + r.reason);
@@ -654,7 +698,6 @@ struct DeformingMesh::Impl {
         fo.rule = FlipRule::DiametricBall;
         const auto edges = region.empty() ? all_edges() : region_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
-        if (r.flips > 0) touch();
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
@@ -1190,7 +1233,7 @@ struct DeformingMesh::Impl {
         for (SampleId s = 0; s < pos.size(); ++s)
             if (state[s] != State::Dead) pos[s] = to[s];
         for (Vertex v : mesh.vertices()) mesh.position(v) = pos[sid(v)];
-        touch();
+        all_changed();
         flips_settled = false;
     }
     /// Moves the samples of `moving` to `to` (the others are there already), adding each
@@ -1199,11 +1242,15 @@ struct DeformingMesh::Impl {
     void move_moving(const std::vector<Point3>& to, const std::vector<double>& moves) {
         const PairTable& pt = moving_pairs();
         for (std::size_t i = 0; i < pt.key.size(); ++i) strain(pt.key[i]) += moves[i];
+        const bool most = 2 * moving.size() > mesh.n_vertices();  // cheaper to start over
         for (SampleId s : moving) {
             pos[s] = to[s];
-            if (state[s] == State::Vertex) mesh.position(vert_of[s]) = pos[s];
+            if (state[s] == State::Vertex) {
+                mesh.position(vert_of[s]) = pos[s];
+                if (!most) moved_log.push_back(vert_of[s]);
+            }
         }
-        touch();
+        if (most) all_changed();
         flips_settled = false;
     }
 
@@ -1393,43 +1440,100 @@ struct DeformingMesh::Impl {
     }
 
     void finish_update() {
-        mesh.garbage_collection();
+        if (mesh.has_garbage()) {
+            mesh.garbage_collection();
+            all_changed();
+        }
         strain_e.assign(mesh.edges_size(), 0.0);
         strain_d.assign(pos.size(), 0.0);
         edge_ends.assign(mesh.edges_size(), {});
         for (Edge e : mesh.edges()) edge_ends[e.idx()] = ends_of(e);
         std::fill(vert_of.begin(), vert_of.end(), Vertex());
         for (Vertex v : mesh.vertices()) vert_of[sid(v)] = v;
-        finish_normals();
+        std::vector<Face> changed;
+        finish_normals(changes_since(finish_cursor, [&](Face f) { changed.push_back(f); }) ? &changed : nullptr);
     }
     /// The end of a local update: no garbage collection (handles stay valid until the next
     /// update at an integer time); the strain restarts on the region's pairs and on every edge
     /// the update made or flipped (its ends changed), and holds elsewhere.
+    /// The edges it looks at: those of the faces changed since the last update's end (an
+    /// edge made or flipped is in one) and those of the region's vertices; every edge when
+    /// everything may have changed.
     void finish_local() {
         strain_e.resize(mesh.edges_size(), 0.0);
         edge_ends.resize(mesh.edges_size(), {});
-        for (Edge e : mesh.edges()) {
+        auto reset = [&](Edge e) {
             const auto ab = ends_of(e);
             if (ab != edge_ends[e.idx()] || region[ab[0]] || region[ab[1]]) {
                 strain_e[e.idx()] = 0;
                 edge_ends[e.idx()] = ab;
             }
+        };
+        std::vector<Face> changed;
+        const bool known = changes_since(finish_cursor, [&](Face f) { changed.push_back(f); });
+        if (known) {
+            for (Face f : changed)
+                if (!mesh.is_deleted(f))
+                    for_each_edge(f, reset);
+            for (SampleId s : region_ids)
+                if (state[s] == State::Vertex)
+                    for (Halfedge h : mesh.outgoing_halfedges(vert_of[s])) reset(SurfaceMesh::edge(h));
+        } else {
+            for (Edge e : mesh.edges()) reset(e);
         }
         strain_d.resize(pos.size(), 0.0);
         for (SampleId s : region_ids)
             if (state[s] == State::Vertex)
                 for (SampleId p : dl[s]) strain_d[p] = 0;
-        finish_normals();
+        finish_normals(known ? &changed : nullptr);
         clear_region();
     }
-    /// The face normals of the update's end (ref_normals) and its folded edges, from one pass
-    /// over the faces.
-    void finish_normals() {
-        ref_normals.assign(mesh.faces_size(), Vec3{});
-        for (Face f : mesh.faces()) ref_normals[f.idx()] = face_normal(f);
-        folded_at_step = folded_edges([&](Face f) { return ref_normals[f.idx()]; });
-        for (Vec3& n : ref_normals) n = normalized(n);
+    /// Calls fn(e) for the three edges of face f.
+    template <class F>
+    void for_each_edge(Face f, F&& fn) const {
+        Halfedge h = mesh.halfedge(f);
+        for (int i = 0; i < 3; ++i, h = mesh.next(h)) fn(SurfaceMesh::edge(h));
     }
+    /// Where the last update's end left the changes (finish_update(), finish_local()).
+    Cursor finish_cursor;
+    /// The face normals of the update's end (ref_normals) and its folded edges
+    /// (folded_at_step): over the faces `changed` since the last end and the edges folded
+    /// then, or (nullptr) over the whole mesh.
+    void finish_normals(const std::vector<Face>* changed) {
+        const auto locked = locked_edges(mesh);
+        auto fold = [&](Edge e) {  // recounts e
+            const bool now = !mesh.is_deleted(e) && is_folded(e, locked);
+            if (now && !fold_flag[e.idx()]) fold_list.push_back(e.idx());
+            fold_flag[e.idx()] = now ? 1 : 0;
+        };
+        if (changed == nullptr) {
+            ref_normals.assign(mesh.faces_size(), Vec3{});
+            for (Face f : mesh.faces()) ref_normals[f.idx()] = normalized(face_normal(f));
+            fold_flag.assign(mesh.edges_size(), 0);
+            fold_list.clear();
+            for (Edge e : mesh.edges()) fold(e);
+        } else {
+            ref_normals.resize(mesh.faces_size(), Vec3{});
+            fold_flag.resize(mesh.edges_size(), 0);
+            const std::vector<std::uint32_t> before = fold_list;
+            for (std::uint32_t e : before) fold(Edge(e));  // a fold may have gone with its edge
+            for (Face f : *changed)
+                if (!mesh.is_deleted(f)) {
+                    ref_normals[f.idx()] = normalized(face_normal(f));
+                    for_each_edge(f, fold);
+                }
+            // Each folded edge once.
+            std::erase_if(fold_list, [&](std::uint32_t e) {
+                if (fold_flag[e] != 1) return true;
+                fold_flag[e] = 2;
+                return false;
+            });
+            for (std::uint32_t e : fold_list) fold_flag[e] = 1;
+        }
+        folded_at_step = fold_list.size();
+    }
+    std::vector<char> fold_flag;           ///< per edge: folded at the last update's end
+    std::vector<std::uint32_t> fold_list;  ///< those edges
     /// The samples of an edge's ends, smaller first.
     [[nodiscard]] std::array<SampleId, 2> ends_of(Edge e) const {
         const Halfedge h = SurfaceMesh::halfedge(e, 0);
@@ -1555,20 +1659,16 @@ struct DeformingMesh::Impl {
     /// Max fold between adjacent triangles (dot of normals <= 0 means an edge-angle <= 90);
     /// crease edges, sharp by design, do not count.
     std::size_t folded_edges() const {
-        return folded_edges([&](Face f) { return face_normal(f); });
-    }
-    /// The same, with `normal(f)` giving face_normal(f).
-    template <class Normal>
-    std::size_t folded_edges(Normal&& normal) const {
         std::size_t n = 0;
         const auto locked = locked_edges(mesh);
-        for (Edge e : mesh.edges()) {
-            if (locked.is_valid() && locked[e]) continue;
-            const Face f0 = mesh.face(SurfaceMesh::halfedge(e, 0)), f1 = mesh.face(SurfaceMesh::halfedge(e, 1));
-            if (!f0.is_valid() || !f1.is_valid()) continue;
-            if (dot(normal(f0), normal(f1)) <= 0) ++n;
-        }
+        for (Edge e : mesh.edges()) n += is_folded(e, locked) ? 1 : 0;
         return n;
+    }
+    /// Whether e (not a crease edge) joins two faces whose normals make a dot <= 0.
+    [[nodiscard]] bool is_folded(Edge e, const EdgeProperty<std::uint8_t>& locked) const {
+        if (locked.is_valid() && locked[e]) return false;
+        const Face f0 = mesh.face(SurfaceMesh::halfedge(e, 0)), f1 = mesh.face(SurfaceMesh::halfedge(e, 1));
+        return f0.is_valid() && f1.is_valid() && dot(face_normal(f0), face_normal(f1)) <= 0;
     }
     Vec3 face_normal(Face f) const {
         const auto vs = mesh.face_vertices(f);
@@ -1763,7 +1863,8 @@ struct DeformingMesh::Impl {
     /// at its nearest vertex.
     void install_mesh(SurfaceMesh m, const std::vector<SampleId>& vs) {
         mesh = std::move(m);
-        touch();
+        mesh.enable_face_log();
+        all_changed();
         flips_settled = false;
         invalidate_pairs();
         // A caller's mesh may carry the properties already (e.g. another DeformingMesh's mesh).
@@ -1996,7 +2097,6 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
         }
     }
     I.substep_to(to, rep, min_n, save, t - dt);
-    I.touch();
     rep.max_displacement = maxd;
     bool trip = false;
     if (maxd > I.params.lambda * dt * (1 + 1e-9)) {

@@ -432,6 +432,7 @@ void SurfaceMesh::delete_face(Face f) {
     if (!fdeleted_[f.idx()]) {
         fdeleted_[f.idx()] = true;
         ++n_deleted_faces_;
+        log_face(f);
     }
 }
 
@@ -582,8 +583,11 @@ void SurfaceMesh::collapse(Halfedge h) {
     const Halfedge o = twin(h);
     const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
 
-    // 1. Every halfedge into v0 now points to v1.
-    for (Halfedge g : outgoing_halfedges(v0)) set_to(twin(g), v1);
+    // 1. Every halfedge into v0 now points to v1 (v0's faces now have v1).
+    for (Halfedge g : outgoing_halfedges(v0)) {
+        set_to(twin(g), v1);
+        if (const Face f = face(g); f.is_valid()) log_face(f);
+    }
 
     // 2. Unlink h and o, removing their triangles.
     auto remove_side = [&](Halfedge x) {
@@ -796,6 +800,7 @@ void SurfaceMesh::permute(std::span<const std::uint32_t> vertex_order,
 
 void SurfaceMesh::reindex(std::span<const std::uint32_t> vkeep, std::span<const std::uint32_t> ekeep,
                           std::span<const std::uint32_t> fkeep) {
+    face_log_.clear();  // its indices are gone
     // Old index -> new index; elements left out of the lists map to kInvalid.
     auto inverse = [](std::span<const std::uint32_t> keep, std::size_t n) {
         std::vector<std::uint32_t> map(n, kInvalid);

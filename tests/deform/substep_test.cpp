@@ -166,6 +166,16 @@ std::vector<Point3> dimpled(const std::vector<Point3>& p0, double depth) {
     return out;
 }
 
+/// The largest circumradius of m's triangles, face by face.
+double largest_circumradius_of(const SurfaceMesh& m) {
+    double r = 0;
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        r = std::max(r, circumradius(m.position(v[0]), m.position(v[1]), m.position(v[2])));
+    }
+    return r;
+}
+
 TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
     // Spec §10.1: a fast dimple at the pole, pushed in and released, the rest of the sphere
     // still. The updates between sub-steps work on the pairs over their budget and their
@@ -186,10 +196,13 @@ TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
             EXPECT_EQ(st.new_folds, 0u) << "t = " << t;
             EXPECT_FALSE(st.self_intersecting) << "t = " << t;
             EXPECT_EQ(st.self_intersecting, count_self_intersections(dm.mesh()) > 0) << "t = " << t;
+            // R is kept from the faces each sub-step and update changed: it is the mesh's.
+            EXPECT_NEAR(st.R, largest_circumradius_of(dm.mesh()), 1e-9 * st.R) << "t = " << t;
             internal += st.internal_updates;
             local_updates += st.local_updates;
             region += st.region_vertices;
             dm.update();
+            EXPECT_NEAR(dm.max_circumradius(), largest_circumradius_of(dm.mesh()), 1e-9 * dm.max_circumradius());
             const auto inv = dm.check_invariants();
             EXPECT_TRUE(inv.ok()) << "local " << local << ", t = " << t << ": " << inv.summary();
             EXPECT_EQ(count_self_intersections(dm.mesh()), 0u);
@@ -205,6 +218,30 @@ TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
             EXPECT_EQ(region, 0u);
         }
     }
+}
+
+TEST(Substep, TheLargestCircumradiusFollowsEveryMovedTriangle) {
+    // R is kept from the triangles that each sub-step moves and each update changes. A bump
+    // grown at the pole, a unit at a time, stretches the triangles on its flank until they
+    // are the largest; at the end of every unit R is the mesh's, whether or not the unit
+    // needed an update.
+    const auto P0 = sphere_samples(3000, 17);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformingMesh dm(P0, options(0.12), {.surface = &sphere});
+    const double R0 = dm.max_circumradius();
+    double R = R0;
+    for (int t = 1; t <= 12; ++t) {
+        std::vector<Point3> P(P0.size());
+        for (std::size_t i = 0; i < P0.size(); ++i) {
+            const double d = distance(P0[i], Point3{0, 0, 1});
+            const double w = d < 0.8 ? 0.5 * (1 + std::cos(kPi * d / 0.8)) : 0.0;
+            P[i] = P0[i] * (1 + 0.05 * t * w);
+        }
+        const StepReport st = dm.advance(t, P);
+        R = largest_circumradius_of(dm.mesh());
+        EXPECT_NEAR(st.R, R, 1e-9 * R) << "t = " << t;
+    }
+    EXPECT_GT(R, 1.1 * R0);  // the flank's triangles grew past the others
 }
 
 TEST(Substep, ALocalMotionIsSubSteppedAsTheSameMotionCarriedByATranslation) {

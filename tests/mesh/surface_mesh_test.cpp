@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <map>
@@ -557,6 +558,76 @@ TEST(SurfaceMesh, IsValidIsFalseForDeletedAndOutOfRangeElements) {
     for (std::uint32_t i = 0; i < m.edges_size(); ++i) EXPECT_TRUE(m.is_valid(Edge(i)));
     for (std::uint32_t i = 0; i < m.faces_size(); ++i) EXPECT_TRUE(m.is_valid(Face(i)));
     EXPECT_FALSE(m.is_valid(Vertex(static_cast<std::uint32_t>(m.vertices_size()))));
+}
+
+
+/// Every face whose vertices changed (made, relinked, deleted, a vertex replaced) since the log
+/// was last cleared is in the face log; a renumbering empties it.
+TEST(SurfaceMesh, FaceLogHoldsEveryFaceAnOperationChanged) {
+    using Corners = std::array<std::uint32_t, 4>;  // vertices (rotated to the smallest), deleted
+    auto corners = [](const SurfaceMesh& m) {
+        std::vector<Corners> c(m.faces_size());
+        for (std::uint32_t i = 0; i < m.faces_size(); ++i) {
+            const Face f(i);
+            if (m.is_deleted(f)) {
+                c[i] = {0, 0, 0, 1};
+                continue;
+            }
+            auto v = m.face_vertices(f);
+            std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+            c[i] = {v[0].idx(), v[1].idx(), v[2].idx(), 0};
+        }
+        return c;
+    };
+    std::size_t logged_changes = 0;
+    for (std::uint64_t seed : {5u, 6u, 7u}) {
+        SurfaceMesh m = test::icosphere(2);
+        m.enable_face_log();
+        EXPECT_TRUE(m.face_log().empty());
+        Rng rng(seed);
+        for (int step = 0; step < 300; ++step) {
+            const std::vector<Corners> before = corners(m);
+            m.clear_face_log();
+            const int op = static_cast<int>(rng.below(5));
+            const std::string ctx = "seed " + std::to_string(seed) + " step " + std::to_string(step) + " op " +
+                                    std::to_string(op);
+            if (op == 0) {
+                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+                if (!m.is_deleted(e) && m.is_flip_ok(e)) m.flip(e);
+            } else if (op == 1) {
+                const Face f(static_cast<std::uint32_t>(rng.below(m.faces_size())));
+                if (m.is_deleted(f)) continue;
+                const auto v = m.face_vertices(f);
+                m.split_face(f, normalized((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0));
+            } else if (op == 2) {
+                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+                if (m.is_deleted(e)) continue;
+                m.split_edge(e, normalized((m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))) * 0.5));
+            } else if (op == 3) {
+                const Halfedge h(static_cast<std::uint32_t>(rng.below(m.halfedges_size())));
+                if (!m.is_deleted(h) && m.is_collapse_ok(h)) m.collapse(h);
+            } else {
+                const Vertex v(static_cast<std::uint32_t>(rng.below(m.vertices_size())));
+                if (!m.is_deleted(v)) (void)m.remove_vertex(v);
+            }
+            const std::vector<Corners> after = corners(m);
+            std::vector<char> logged(m.faces_size(), 0);
+            for (std::uint32_t f : m.face_log()) {
+                ASSERT_LT(f, m.faces_size()) << ctx;
+                logged[f] = 1;
+            }
+            for (std::uint32_t i = 0; i < after.size(); ++i) {
+                const bool changed = i >= before.size() || before[i] != after[i];
+                if (changed) {
+                    ++logged_changes;
+                    EXPECT_TRUE(logged[i]) << ctx << ": face " << i << " changed and is not in the log";
+                }
+            }
+        }
+        m.garbage_collection();
+        EXPECT_TRUE(m.face_log().empty()) << "a renumbering keeps stale indices in the log";
+    }
+    EXPECT_GT(logged_changes, 1000u);
 }
 
 }  // namespace

@@ -312,6 +312,20 @@ public:
     void permute(std::span<const std::uint32_t> vertex_order, std::span<const std::uint32_t> edge_order,
                  std::span<const std::uint32_t> face_order);
 
+    // ---- face log ------------------------------------------------------------------------
+    /// The face log, off until enable_face_log(): while on, every face made, relinked (a flip,
+    /// a split, a vertex removal, a hole filled), deleted, or given another vertex by a
+    /// collapse is appended, possibly more than once, so that a caller can keep per-face data
+    /// current without a pass over the mesh. Moving a vertex is not logged. A renumbering
+    /// (garbage_collection() that finds garbage, permute()) empties the log: its indices are
+    /// gone, and a reader must start over.
+    void enable_face_log(bool on = true) {
+        face_log_on_ = on;
+        if (!on) face_log_.clear();
+    }
+    [[nodiscard]] const std::vector<std::uint32_t>& face_log() const { return face_log_; }
+    void clear_face_log() { face_log_.clear(); }
+
     // ---- properties ----------------------------------------------------------------------
     /// add_*_property: a new property array with `def` for every element.
     /// \throw InvalidInput if a property of that kind and name (of any type) is already there.
@@ -374,6 +388,10 @@ private:
         set_next(c, a);
         for (Halfedge h : {a, b, c}) set_face(h, f);
         fhalfedge_[f.idx()] = a.idx();
+        log_face(f);
+    }
+    void log_face(Face f) {
+        if (face_log_on_) face_log_.push_back(f.idx());
     }
     void set_to(Halfedge h, Vertex v) { hto_[h.idx()] = v.idx(); }
     void set_halfedge(Vertex v, Halfedge h) { vhalfedge_[v.idx()] = h.idx(); }
@@ -397,6 +415,8 @@ private:
     std::vector<bool> vdeleted_, edeleted_, fdeleted_;
     std::size_t n_deleted_vertices_ = 0, n_deleted_edges_ = 0, n_deleted_faces_ = 0;
     detail::PropertyContainer vprops_, eprops_, fprops_;
+    std::vector<std::uint32_t> face_log_;
+    bool face_log_on_ = false;
 };
 
 inline VertexHalfedgeRange::Iterator& VertexHalfedgeRange::Iterator::operator++() {
