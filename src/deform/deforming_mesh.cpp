@@ -315,12 +315,13 @@ struct DeformingMesh::Impl {
     /// Grid of the current vertices (ids = sample ids), cell grid_cell(cell).
     /// In a local update, only the vertices within kRegionMargin R of the region's box: the
     /// update's queries start near the region and find what they look for within a few R.
-    PointGrid vertex_grid(double cell) const {
-        const Bbox3 box = region_box();
+    PointGrid vertex_grid(double cell) const { return vertex_grid(cell, region_box()); }
+    /// The same over the vertices in `box`.
+    PointGrid vertex_grid(double cell, const Bbox3& box) const {
         std::vector<Vertex> vs;
         vs.reserve(mesh.n_vertices());
         for (Vertex v : mesh.vertices())
-            if (region.empty() || box.contains(mesh.position(v))) vs.push_back(v);
+            if (box.contains(mesh.position(v))) vs.push_back(v);
         return PointGrid::bulk(grid_cell(cell), vs.size(), [&](std::size_t k) { return mesh.position(vs[k]); },
                                [&](std::size_t k) { return sid(vs[k]); });
     }
@@ -1441,8 +1442,10 @@ struct DeformingMesh::Impl {
 
     void finish_update() {
         if (mesh.has_garbage()) {
+            drain_check();  // the changes since the last intersection test survive the renumbering
             mesh.garbage_collection();
             all_changed();
+            check_cursor = Cursor{gen, 0, 0};
         }
         strain_e.assign(mesh.edges_size(), 0.0);
         strain_d.assign(pos.size(), 0.0);
@@ -1542,70 +1545,74 @@ struct DeformingMesh::Impl {
     }
 
     // ---- the local intersection test (spec §10.4) ----------------------------------------------
-    /// The sample positions and the faces (each as its vertices' samples, smallest first,
-    /// sorted; face indices change with every garbage collection) when the mesh was last
-    /// tested and found embedded (valid: such a test happened, and its mesh did not intersect
-    /// itself).
-    struct CheckedState {
-        bool valid = false;
-        std::vector<Point3> pos;
-        std::vector<std::array<SampleId, 3>> faces;
-    };
-    CheckedState checked;
-    [[nodiscard]] std::array<SampleId, 3> face_samples(Face f) const {
-        const auto vs = mesh.face_vertices(f);
-        std::array<SampleId, 3> a{sid(vs[0]), sid(vs[1]), sid(vs[2])};
-        std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
-        return a;
+    /// The faces changed since the last intersection test that found the mesh embedded: those
+    /// logged or moved since check_cursor, and those carried through a renumbering in the face
+    /// property kUnchecked (drain_check()); every face when check_all (no such test yet, the
+    /// last one found an intersection, or every face may have changed since).
+    Cursor check_cursor;
+    bool check_all = true;
+    static constexpr const char* kUnchecked = "f:unchecked";
+    /// Moves the changes since check_cursor into kUnchecked.
+    void drain_check() {
+        auto flag = mesh.get_face_property<std::uint8_t>(kUnchecked);
+        const bool known = changes_since(check_cursor, [&](Face f) {
+            if (!mesh.is_deleted(f)) flag[f] = 1;
+        });
+        if (!known) check_all = true;
     }
-    [[nodiscard]] CheckedState snapshot() const {
-        CheckedState u;
-        u.valid = true;
-        u.pos = pos;
-        u.faces.reserve(mesh.n_faces());
-        for (Face f : mesh.faces()) u.faces.push_back(face_samples(f));
-        std::sort(u.faces.begin(), u.faces.end());
-        return u;
-    }
-    /// Whether the mesh intersects itself now, when it did not at `start` (the last test):
-    /// two faces that neither moved nor changed since cannot meet, so the faces tested are
-    /// those with a moved vertex or new vertices (an Add, a Remove or a flip made them, in a
-    /// unit or in an update), and every face whose box meets one of theirs (its vertices lie
-    /// within the longest edge, <= 2R, of that box). The whole mesh when more than half of the
-    /// faces changed.
-    [[nodiscard]] bool intersects_near_changes(const CheckedState& start) const {
+    /// Whether the mesh intersects itself now (spec §10.4). Two faces that neither moved nor
+    /// changed since the last embedded test cannot meet, so the faces tested are the changed
+    /// ones (an Add, a Remove, a flip or a move made them, in a unit or in an update) and every
+    /// face whose box meets one of theirs (its vertices lie within the longest edge, <= 2R, of
+    /// that box). The whole mesh when more than half of the faces changed. Leaves the faces
+    /// checked when it finds none.
+    [[nodiscard]] bool intersection_test() {
+        drain_check();
+        auto flag = mesh.get_face_property<std::uint8_t>(kUnchecked);
         std::vector<Face> changed;
-        for (Face f : mesh.faces()) {
-            const auto vs = mesh.face_vertices(f);
-            bool c = !std::binary_search(start.faces.begin(), start.faces.end(), face_samples(f));
-            for (int i = 0; i < 3 && !c; ++i) {
-                const SampleId x = sid(vs[i]);
-                c = x >= start.pos.size() || pos[x] != start.pos[x];
+        if (!check_all)
+            for (Face f : mesh.faces())
+                if (flag[f]) changed.push_back(f);
+        bool hit = false;
+        if (check_all || 2 * changed.size() > mesh.n_faces()) {
+            hit = has_self_intersections(mesh);
+        } else if (!changed.empty()) {
+            const double R = max_circumradius();
+            Bbox3 box;
+            for (Face f : changed)
+                for (Vertex v : mesh.face_vertices(f)) box.extend(mesh.position(v));
+            const Vec3 m{4 * R, 4 * R, 4 * R};  // a face's half box (<= R) plus its reach (2R)
+            box.min = box.min - m;
+            box.max = box.max + m;
+            const PointGrid grid = vertex_grid(R, box);
+            std::vector<char> in(mesh.faces_size(), 0);
+            std::vector<Face> near;
+            auto take = [&](Face g) {
+                if (!in[g.idx()]) {
+                    in[g.idx()] = 1;
+                    near.push_back(g);
+                }
+                return false;
+            };
+            for (Face f : changed) {
+                const Bbox3 b = detail::face_box(mesh, f);
+                const Vec3 half = (b.max - b.min) * 0.5;
+                const double reach = std::max({half.x, half.y, half.z}) + 2 * R * (1 + 1e-9);
+                detail::for_each_face_meeting(mesh, grid, (b.min + b.max) * 0.5, reach, b,
+                                              [&](std::uint32_t s) { return vert_of[s]; }, take);
+                take(f);
             }
-            if (c) changed.push_back(f);
+            hit = has_self_intersections(mesh, near);
         }
-        if (2 * changed.size() > mesh.n_faces()) return has_self_intersections(mesh);
-        if (changed.empty()) return false;
-        const double R = max_circumradius();
-        const PointGrid grid = vertex_grid(R);
-        std::vector<char> in(mesh.faces_size(), 0);
-        std::vector<Face> near;
-        auto take = [&](Face g) {
-            if (!in[g.idx()]) {
-                in[g.idx()] = 1;
-                near.push_back(g);
-            }
-            return false;
-        };
-        for (Face f : changed) {
-            const Bbox3 b = detail::face_box(mesh, f);
-            const Vec3 half = (b.max - b.min) * 0.5;
-            const double reach = std::max({half.x, half.y, half.z}) + 2 * R * (1 + 1e-9);
-            detail::for_each_face_meeting(mesh, grid, (b.min + b.max) * 0.5, reach, b,
-                                          [&](std::uint32_t s) { return vert_of[s]; }, take);
-            take(f);
+        if (hit) {
+            check_all = true;
+        } else {
+            for (Face f : changed) flag[f] = 0;
+            if (check_all)
+                for (Face f : mesh.faces()) flag[f] = 0;
+            check_all = false;
         }
-        return has_self_intersections(mesh, near);
+        return hit;
     }
 
     // ---- the region of a local update (spec §10.1) ---------------------------------------------
@@ -1871,6 +1878,9 @@ struct DeformingMesh::Impl {
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
+        if (auto old = mesh.get_face_property<std::uint8_t>(kUnchecked); old.is_valid()) mesh.remove_property(old);
+        (void)mesh.add_face_property<std::uint8_t>(kUnchecked, 0);
+        check_all = true;
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
         for (SampleId s = 0; s < state.size(); ++s) {
@@ -2137,12 +2147,7 @@ StepReport DeformingMesh::Impl::frame(int t, std::span<const Point3> positions, 
     rep.self_intersecting = I.intersecting;
     if (I.params.intersection_checks && (rep.substeps > 1 || rep.internal_updates > 0 || rep.new_folds > 0 || inverted > 0)) {
         // Spec §10.4: local, against the state of the last test, when that one was embedded.
-        rep.self_intersecting =
-            I.checked.valid ? I.intersects_near_changes(I.checked) : has_self_intersections(I.mesh);
-        if (rep.self_intersecting)
-            I.checked.valid = false;
-        else
-            I.checked = I.snapshot();
+        rep.self_intersecting = I.intersection_test();
     }
     rep.emergency = trip && I.params.emergency_steps && t < I.next;
     I.emergency_requested = rep.emergency;

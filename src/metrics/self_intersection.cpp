@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <cstdint>
+#include <optional>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -48,6 +49,32 @@ CgalCopy to_cgal(const SurfaceMesh& mesh) {
     return out;
 }
 
+/// A copy of `faces` alone (live faces of the mesh, each once) with the vertices they use, or
+/// nothing when CGAL cannot hold them as one surface (a vertex whose faces among them form
+/// fans it cannot link).
+std::optional<CgalCopy> to_cgal(const SurfaceMesh& mesh, std::span<const Face> faces) {
+    CgalCopy out;
+    std::vector<CgalMesh::Vertex_index> index(mesh.vertices_size(), CgalMesh::null_vertex());
+    auto vertex = [&](Vertex v) {
+        CgalMesh::Vertex_index& i = index[v.idx()];
+        if (i == CgalMesh::null_vertex()) {
+            const Point3& p = mesh.position(v);
+            i = out.mesh.add_vertex(K::Point_3(p.x, p.y, p.z));
+        }
+        return i;
+    };
+    out.faces.reserve(faces.size());
+    for (const Face f : faces) {
+        DYNMESH_CHECK(mesh.is_valid(f) && !mesh.is_deleted(f),
+                      "has_self_intersections: face f" + std::to_string(f.idx()) + " is not a live face");
+        const auto vs = mesh.face_vertices(f);
+        const CgalFace cf = out.mesh.add_face(vertex(vs[0]), vertex(vs[1]), vertex(vs[2]));
+        if (cf == CgalMesh::null_face()) return std::nullopt;
+        out.faces.push_back(f);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::size_t count_self_intersections(const SurfaceMesh& mesh) {
@@ -88,6 +115,8 @@ bool has_self_intersections(const SurfaceMesh& mesh) {
 
 bool has_self_intersections(const SurfaceMesh& mesh, std::span<const Face> faces) {
     if (faces.empty()) return false;
+    if (const std::optional<CgalCopy> part = to_cgal(mesh, faces))
+        return PMP::does_self_intersect<CGAL::Sequential_tag>(part->mesh);
     const CgalCopy copy = to_cgal(mesh);
     std::vector<std::uint32_t> index(mesh.faces_size(), UINT32_MAX);  // our face -> CGAL face
     for (std::size_t i = 0; i < copy.faces.size(); ++i) index[copy.faces[i].idx()] = static_cast<std::uint32_t>(i);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "dynmesh/error.hpp"
+#include "dynmesh/geometry/random.hpp"
 #include "test_support.hpp"
 
 namespace dynmesh {
@@ -141,6 +142,34 @@ TEST(SelfIntersection, ReportsLiveFacesOfAMeshWithGarbage) {
         EXPECT_FALSE(mesh.is_deleted(g));
         EXPECT_TRUE(has_v0(f) || has_v0(g));  // only the moved vertex's star is misplaced
     }
+}
+
+TEST(SelfIntersection, AnyFaceRangeAgreesWithTheWholeMeshPairs) {
+    // A range is copied alone: faces that share an edge or a vertex in the mesh must share it
+    // in the copy, or they would be taken for intersecting. Random ranges, from scattered
+    // faces (no shared edge) to whole neighbourhoods, on an embedded and a pierced mesh: the
+    // range intersects itself exactly when one of the mesh's pairs lies in it.
+    std::size_t hits = 0, misses = 0;
+    for (const SurfaceMesh& mesh : {test::icosphere(3), pierced_icosphere(2)}) {
+        const auto pairs = self_intersections(mesh);
+        Rng rng(11);
+        for (int trial = 0; trial < 60; ++trial) {
+            const double keep = trial % 3 == 0 ? 0.2 : trial % 3 == 1 ? 0.6 : 0.95;
+            std::vector<char> in(mesh.faces_size(), 0);
+            std::vector<Face> range;
+            for (Face f : mesh.faces())
+                if (rng.uniform() < keep) {
+                    in[f.idx()] = 1;
+                    range.push_back(f);
+                }
+            bool expected = false;
+            for (const auto& [f, g] : pairs) expected = expected || (in[f.idx()] && in[g.idx()]);
+            EXPECT_EQ(has_self_intersections(mesh, range), expected) << "trial " << trial;
+            (expected ? hits : misses) += 1;
+        }
+    }
+    EXPECT_GT(hits, 10u);
+    EXPECT_GT(misses, 10u);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ namespace dynmesh {
 
 /// True when some pair of faces, both in `faces` (live faces of the mesh, each once),
 /// intersects: the test of a neighbourhood (the faces that moved and every face near them).
-/// Copies the whole mesh (linear), then tests only the boxes of `faces`.
+/// Copies those faces alone (the whole mesh when CGAL cannot hold them as one surface).
 [[nodiscard]] bool has_self_intersections(const SurfaceMesh& mesh, std::span<const Face> faces);
 
 }  // namespace dynmesh
