@@ -14,8 +14,10 @@
 #include "dynmesh/deform/scenario.hpp"
 #include "dynmesh/geometry/triangle.hpp"
 #include "dynmesh/mesh/check.hpp"
+#include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "test_support.hpp"
 
 namespace dynmesh {
 namespace {
@@ -320,6 +322,57 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
     EXPECT_TRUE(inv.ok()) << inv.summary();
 }
 
+
+TEST(Substep, AnIntersectionMadeByAnUncheckedUnitIsFoundByTheNextCheck) {
+    // Spec §10.4: each test covers every face changed since the last embedded one, across the
+    // updates (and their renumberings) between them. Two spheres: a small one B beside a unit
+    // sphere A. Unit 1 dimples A's far side (sub-stepped, so tested: embedded). Unit 2 slides
+    // B rigidly into A: one sub-step, no fold, so untested; its update deletes a sample and
+    // renumbers the mesh. Unit 3 releases the dimple: its test must find B inside A although
+    // B did not move in it.
+    TriangleSoup soup = test::icosphere(3).to_soup();
+    const SurfaceMesh small = test::icosphere(2);
+    const auto offset = static_cast<std::uint32_t>(soup.points.size());
+    for (Vertex v : small.vertices()) soup.points.push_back(Point3{3, 0, 0} + small.position(v) * 0.5);
+    for (const auto& t : small.to_soup().triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const SurfaceMesh m = SurfaceMesh::from_soup(soup);
+    InitialSurface init;
+    init.mesh = &m;
+    for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
+    DeformOptions o = options(0.1);
+    o.init_refine = false;
+    const std::vector<Point3> P0 = soup.points;
+    DeformingMesh dm(P0, o, init);
+    auto at = [&](double depth, double slide) {
+        std::vector<Point3> p = P0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            if (i >= offset) {
+                p[i].x -= slide;
+                continue;
+            }
+            const double d = distance(P0[i], Point3{-1, 0, 0});
+            p[i] = P0[i] * (1 - depth * (d < 0.5 ? 0.5 * (1 + std::cos(kPi * d / 0.5)) : 0.0));
+        }
+        return p;
+    };
+    const StepReport s1 = dm.advance(1, at(0.2, 0));
+    ASSERT_GT(s1.substeps, 1u);
+    ASSERT_FALSE(s1.self_intersecting);
+    dm.update();
+    const StepReport s2 = dm.advance(2, at(0.2, 2.2));
+    ASSERT_EQ(s2.substeps, 1u);
+    ASSERT_EQ(s2.new_folds + s2.inverted_triangles, 0u);
+    ASSERT_GT(count_self_intersections(dm.mesh()), 0u);  // B is in A
+    SampleId top = 0;  // a sample of A far from the dimple and from B
+    for (SampleId i = 0; i < offset; ++i)
+        if (P0[i].z > P0[top].z) top = i;
+    dm.queue_deletion(top);
+    const DeformUpdateReport u = dm.update();
+    ASSERT_GT(u.counters.samples_deleted, 0u);
+    const StepReport s3 = dm.advance(3, at(0, 2.2));
+    ASSERT_GT(s3.substeps, 1u);
+    EXPECT_TRUE(s3.self_intersecting);
+}
 
 TEST(Substep, AVertexSentThroughTheOppositeWallIsDetected) {
     // F7a: one sample's input position jumps through the sphere and out of the far side in
