@@ -604,6 +604,7 @@ struct DeformingMesh::Impl {
         creases_on = false;
         init.crease_edges = init.crease_lines = init.corners = 0;
         flips_settled = false;  // unlocked edges may flip
+        stale_flip.all = true;
     }
     /// The crease edges as sample pairs, to carry them to a renumbered or rebuilt mesh.
     [[nodiscard]] std::vector<std::pair<SampleId, SampleId>> crease_pairs() const {
@@ -692,18 +693,33 @@ struct DeformingMesh::Impl {
     /// balls is checked by report_balls() on the mesh an update or the initialisation ends
     /// with).
     /// In a local update (spec §10.1) the flips start from the edges around the region's
-    /// vertices only, and propagate from there.
+    /// vertices only, and propagate from there. Otherwise from the edges of the faces changed
+    /// since the last global flip converged (stale_flip; every edge after one that did not):
+    /// an edge whose two faces neither changed nor moved since then needs no flip.
     void global_flip() {
         if (flips_settled) return;
         FlipOptions fo;
         fo.rule = FlipRule::DiametricBall;
-        const auto edges = region.empty() ? all_edges() : region_edges();
+        const auto edges = region.empty() ? stale_edges() : region_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
         cur.flips += r.flips;
         cur.flip_refusals += r.not_improving;
         if (!r.converged)
             violation(Violation::NonEmptyBall, "the global flip stopped at its cap after " + std::to_string(r.flips) + " flips");
-        if (region.empty()) flips_settled = r.converged;
+        if (region.empty()) {
+            flips_settled = r.converged;
+            looked(stale_flip, r.converged);
+        }
+    }
+    /// The edges of the faces changed since the last converged global flip, each once, in
+    /// index order (all edges when stale_flip.all).
+    std::vector<Edge> stale_edges() {
+        if (stale_flip.all) return all_edges();
+        std::vector<Edge> e;
+        for (Face f : stale_faces(stale_flip)) for_each_edge(f, [&](Edge x) { e.push_back(x); });
+        std::sort(e.begin(), e.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+        e.erase(std::unique(e.begin(), e.end()), e.end());
+        return e;
     }
     /// The edges with an end in the region (each once).
     std::vector<Edge> region_edges() const {
@@ -724,7 +740,7 @@ struct DeformingMesh::Impl {
         if (!params.verify_balls) return;
         const double R = max_circumradius();
         if (!(R > 0)) return;
-        const BallScan b = scan_balls(vertex_grid(2 * R));
+        const BallScan b = scan_changed_balls(R);
         if (b.count == 0) return;
         violation(Violation::NonEmptyBall, std::to_string(b.count) + " diametric balls hold a vertex " + when +
                                                ", e.g. that of triangle " + face_str(b.first) + " holds " +
@@ -746,30 +762,8 @@ struct DeformingMesh::Impl {
     [[nodiscard]] BallScan scan_balls(const PointGrid& grid) const {
         BallScan b;
         const std::vector<std::uint32_t> patch = face_patches();
-        auto shares_patch = [&](std::uint32_t w, Face f) {
-            if (patch.empty()) return true;
-            for (Halfedge h : mesh.outgoing_halfedges(vert_of[w]))
-                if (const Face g = mesh.face(h); g.is_valid() && patch[g.idx()] == patch[f.idx()]) return true;
-            return false;
-        };
         for (Face f : mesh.faces()) {
-            const auto vs = mesh.face_vertices(f);
-            const Point3 &a = mesh.position(vs[0]), &bb = mesh.position(vs[1]), &c = mesh.position(vs[2]);
-            const Point3 cc = circumcenter(a, bb, c);
-            if (!is_finite(cc)) continue;  // collinear
-            const double r2 = sqnorm(cc - a);
-            const double r2s = r2 * (1 + 2e-9);
-            std::size_t hits = 0;
-            std::uint32_t any = kNoSlot;
-            grid.for_each_candidate(cc, std::sqrt(r2), [&](std::uint32_t w) {
-                if (sqnorm(pos[w] - cc) > r2s) return;
-                const Vertex x = vert_of[w];
-                if (x == vs[0] || x == vs[1] || x == vs[2]) return;
-                if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive && shares_patch(w, f)) {
-                    ++hits;
-                    if (any == kNoSlot || w < any) any = w;
-                }
-            });
+            const auto [hits, any] = ball_hits(f, grid, patch);
             if (hits == 0) continue;
             if (b.count++ == 0) {
                 b.first = f;
@@ -777,6 +771,103 @@ struct DeformingMesh::Impl {
                 b.first_hits = hits;
             }
         }
+        return b;
+    }
+    /// The vertices strictly inside f's diametric ball (scan_balls(): `grid` holds every
+    /// vertex near it, `patch` from face_patches()), and the smallest of their slots.
+    [[nodiscard]] std::pair<std::size_t, std::uint32_t> ball_hits(Face f, const PointGrid& grid,
+                                                                  const std::vector<std::uint32_t>& patch) const {
+        auto shares_patch = [&](std::uint32_t w) {
+            if (patch.empty()) return true;
+            for (Halfedge h : mesh.outgoing_halfedges(vert_of[w]))
+                if (const Face g = mesh.face(h); g.is_valid() && patch[g.idx()] == patch[f.idx()]) return true;
+            return false;
+        };
+        const auto vs = mesh.face_vertices(f);
+        const Point3 &a = mesh.position(vs[0]), &bb = mesh.position(vs[1]), &c = mesh.position(vs[2]);
+        const Point3 cc = circumcenter(a, bb, c);
+        if (!is_finite(cc)) return {0, kNoSlot};  // collinear
+        const double r2 = sqnorm(cc - a);
+        const double r2s = r2 * (1 + 2e-9);
+        std::size_t hits = 0;
+        std::uint32_t any = kNoSlot;
+        grid.for_each_candidate(cc, std::sqrt(r2), [&](std::uint32_t w) {
+            if (sqnorm(pos[w] - cc) > r2s) return;
+            const Vertex x = vert_of[w];
+            if (x == vs[0] || x == vs[1] || x == vs[2]) return;
+            if (!collinear(a, bb, c) && in_diametric_ball(a, bb, c, pos[w]) == Sign::Positive && shares_patch(w)) {
+                ++hits;
+                if (any == kNoSlot || w < any) any = w;
+            }
+        });
+        return {hits, any};
+    }
+    /// kStale's bit for the faces whose ball held a vertex at the last scan_changed_balls().
+    static constexpr std::uint8_t kBallHeld = 8;
+    /// scan_balls() from the faces whose answer may have changed since the last call
+    /// (stale_balls): those changed, those with a vertex within 2R of a changed face's vertex
+    /// (a ball, of radius <= R, that a moved or new vertex entered), and those whose ball held
+    /// a vertex then (kBallHeld; one may have left). The whole mesh the first time, after
+    /// every face may have changed, with creases, or when more than half of the faces changed.
+    [[nodiscard]] BallScan scan_changed_balls(double R) {
+        const std::vector<Face> changed = stale_faces(stale_balls);
+        auto flag = stale_property();
+        std::vector<Face> test;
+        std::vector<char> in(mesh.faces_size(), 0);
+        auto take = [&](Face f) {
+            if (!in[f.idx()]) {
+                in[f.idx()] = 1;
+                test.push_back(f);
+            }
+        };
+        PointGrid grid;
+        if (creases_on || 2 * changed.size() > mesh.n_faces()) {
+            for (Face f : mesh.faces()) take(f);
+            grid = vertex_grid(2 * R, region_box());
+        } else {
+            Bbox3 box;
+            std::vector<SampleId> moved;
+            for (Face f : changed)
+                for (Vertex v : mesh.face_vertices(f)) {
+                    box.extend(mesh.position(v));
+                    moved.push_back(sid(v));
+                }
+            for (Face f : mesh.faces())
+                if (flag[f] & kBallHeld) {
+                    take(f);
+                    for (Vertex v : mesh.face_vertices(f)) box.extend(mesh.position(v));
+                }
+            const Vec3 m{5 * R, 5 * R, 5 * R};  // the faces 2R from the box and their balls
+            box.min = box.min - m;
+            box.max = box.max + m;
+            grid = vertex_grid(2 * R, box);
+            std::sort(moved.begin(), moved.end());
+            moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+            const double reach2 = 4 * R * R * (1 + 1e-9);
+            for (SampleId x : moved)
+                grid.for_each_candidate(P(x), 2 * R * (1 + 1e-9), [&](std::uint32_t w) {
+                    if (sqnorm(P(w) - P(x)) > reach2) return;
+                    for (Halfedge h : mesh.outgoing_halfedges(vert_of[w]))
+                        if (const Face g = mesh.face(h); g.is_valid()) take(g);
+                });
+            for (Face f : changed) take(f);
+        }
+        const std::vector<std::uint32_t> patch = face_patches();
+        std::vector<std::pair<std::size_t, std::uint32_t>> hit(mesh.faces_size(), {0, kNoSlot});
+        for (Face f : test) {
+            hit[f.idx()] = ball_hits(f, grid, patch);
+            flag[f] = static_cast<std::uint8_t>(hit[f.idx()].first > 0 ? flag[f] | kBallHeld : flag[f] & ~kBallHeld);
+        }
+        looked(stale_balls, true);
+        BallScan b;
+        for (Face f : mesh.faces())
+            if (flag[f] & kBallHeld) {
+                if (b.count++ == 0) {
+                    b.first = f;
+                    b.first_hits = hit[f.idx()].first;
+                    b.inside = hit[f.idx()].second;
+                }
+            }
         return b;
     }
 
@@ -1243,7 +1334,9 @@ struct DeformingMesh::Impl {
     void move_moving(const std::vector<Point3>& to, const std::vector<double>& moves) {
         const PairTable& pt = moving_pairs();
         for (std::size_t i = 0; i < pt.key.size(); ++i) strain(pt.key[i]) += moves[i];
-        const bool most = 2 * moving.size() > mesh.n_vertices();  // cheaper to start over
+        std::size_t moving_vertices = 0;
+        for (SampleId s : moving) moving_vertices += state[s] == State::Vertex ? 1 : 0;
+        const bool most = 2 * moving_vertices > mesh.n_vertices();  // cheaper to start over
         for (SampleId s : moving) {
             pos[s] = to[s];
             if (state[s] == State::Vertex) {
@@ -1442,10 +1535,10 @@ struct DeformingMesh::Impl {
 
     void finish_update() {
         if (mesh.has_garbage()) {
-            drain_check();  // the changes since the last intersection test survive the renumbering
+            for (Tracker* tr : trackers()) drain(*tr);  // what they have not seen survives the renumbering
             mesh.garbage_collection();
             all_changed();
-            check_cursor = Cursor{gen, 0, 0};
+            for (Tracker* tr : trackers()) tr->cursor = Cursor{gen, 0, 0};
         }
         strain_e.assign(mesh.edges_size(), 0.0);
         strain_d.assign(pos.size(), 0.0);
@@ -1545,21 +1638,49 @@ struct DeformingMesh::Impl {
     }
 
     // ---- the local intersection test (spec §10.4) ----------------------------------------------
-    /// The faces changed since the last intersection test that found the mesh embedded: those
-    /// logged or moved since check_cursor, and those carried through a renumbering in the face
-    /// property kUnchecked (drain_check()); every face when check_all (no such test yet, the
-    /// last one found an intersection, or every face may have changed since).
-    Cursor check_cursor;
-    bool check_all = true;
-    static constexpr const char* kUnchecked = "f:unchecked";
-    /// Moves the changes since check_cursor into kUnchecked.
-    void drain_check() {
-        auto flag = mesh.get_face_property<std::uint8_t>(kUnchecked);
-        const bool known = changes_since(check_cursor, [&](Face f) {
-            if (!mesh.is_deleted(f)) flag[f] = 1;
-        });
-        if (!known) check_all = true;
+    /// Readers of the changes whose last look may lie before a renumbering (the intersection
+    /// test, the global flip, the ball scan): each owns a bit of the face property kStale, set
+    /// on the faces changed since it last looked (drain(), also run before every garbage
+    /// collection), and reads every face when `all` (it never looked, its last look found the
+    /// mesh wanting, or every face may have changed since).
+    struct Tracker {
+        std::uint8_t bit;
+        Cursor cursor;
+        bool all = true;
+    };
+    static constexpr const char* kStale = "f:stale";
+    Tracker stale_intersection{1}, stale_flip{2}, stale_balls{4};
+    [[nodiscard]] std::array<Tracker*, 3> trackers() { return {&stale_intersection, &stale_flip, &stale_balls}; }
+    [[nodiscard]] FaceProperty<std::uint8_t> stale_property() const {
+        return mesh.get_face_property<std::uint8_t>(kStale);
     }
+    /// Moves the changes since t's cursor into its bit.
+    void drain(Tracker& t) {
+        auto flag = stale_property();
+        const bool known = changes_since(t.cursor, [&](Face f) {
+            if (!mesh.is_deleted(f)) flag[f] |= t.bit;
+        });
+        if (!known) t.all = true;
+    }
+    /// The live faces changed since t last looked (all faces when t.all), after drain(t).
+    [[nodiscard]] std::vector<Face> stale_faces(Tracker& t) {
+        drain(t);
+        std::vector<Face> out;
+        const auto flag = stale_property();
+        for (Face f : mesh.faces())
+            if (t.all || (flag[f] & t.bit)) out.push_back(f);
+        return out;
+    }
+    /// t has looked at everything (`ok`: and found it good; otherwise it reads every face
+    /// next time).
+    void looked(Tracker& t, bool ok) {
+        drain(t);  // the changes t's own work made
+        auto flag = stale_property();
+        const auto keep = static_cast<std::uint8_t>(~t.bit);
+        for (Face f : mesh.faces()) flag[f] &= keep;
+        t.all = !ok;
+    }
+
     /// Whether the mesh intersects itself now (spec §10.4). Two faces that neither moved nor
     /// changed since the last embedded test cannot meet, so the faces tested are the changed
     /// ones (an Add, a Remove, a flip or a move made them, in a unit or in an update) and every
@@ -1567,14 +1688,9 @@ struct DeformingMesh::Impl {
     /// that box). The whole mesh when more than half of the faces changed. Leaves the faces
     /// checked when it finds none.
     [[nodiscard]] bool intersection_test() {
-        drain_check();
-        auto flag = mesh.get_face_property<std::uint8_t>(kUnchecked);
-        std::vector<Face> changed;
-        if (!check_all)
-            for (Face f : mesh.faces())
-                if (flag[f]) changed.push_back(f);
+        const std::vector<Face> changed = stale_faces(stale_intersection);
         bool hit = false;
-        if (check_all || 2 * changed.size() > mesh.n_faces()) {
+        if (2 * changed.size() > mesh.n_faces()) {
             hit = has_self_intersections(mesh);
         } else if (!changed.empty()) {
             const double R = max_circumradius();
@@ -1604,14 +1720,7 @@ struct DeformingMesh::Impl {
             }
             hit = has_self_intersections(mesh, near);
         }
-        if (hit) {
-            check_all = true;
-        } else {
-            for (Face f : changed) flag[f] = 0;
-            if (check_all)
-                for (Face f : mesh.faces()) flag[f] = 0;
-            check_all = false;
-        }
+        looked(stale_intersection, !hit);
         return hit;
     }
 
@@ -1878,9 +1987,9 @@ struct DeformingMesh::Impl {
         if (auto old = mesh.get_vertex_property<SampleId>("v:sample"); old.is_valid()) mesh.remove_property(old);
         if (auto locks = locked_edges(mesh); locks.is_valid() && !creases_on) mesh.remove_property(locks);
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
-        if (auto old = mesh.get_face_property<std::uint8_t>(kUnchecked); old.is_valid()) mesh.remove_property(old);
-        (void)mesh.add_face_property<std::uint8_t>(kUnchecked, 0);
-        check_all = true;
+        if (auto old = stale_property(); old.is_valid()) mesh.remove_property(old);
+        (void)mesh.add_face_property<std::uint8_t>(kStale, 0);
+        for (Tracker* tr : trackers()) tr->all = true;
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
         for (SampleId s = 0; s < state.size(); ++s) {

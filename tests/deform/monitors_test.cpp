@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,53 @@ TEST(DeformMonitors, GlobalFlipReportsTheBallsItCannotEmpty) {
     const DeformingMesh quiet(pos, params, init);
     EXPECT_EQ(count_kind(quiet.violations(), "non_empty_ball"), 0u);
     EXPECT_EQ(quiet.init_report().nonempty_balls, nonempty_balls);  // the t = 0 check still counts
+}
+
+TEST(DeformMonitors, TheUpdatesBallCountFollowsVerticesIntoBallsOfTrianglesThatDidNotMove) {
+    // An update scans again only the diametric balls that may have changed since the last
+    // scan. Here the middle of a flat ellipsoid's lower sheet is pushed up, over eight units,
+    // to just under the upper sheet, which stays still: the balls of the upper triangles come
+    // to hold vertices of the lower sheet although those triangles never changed; then, in
+    // one unit, it goes back and leaves those balls again. The samples
+    // are mirrored in x and in y, so that the motion has no best-fit turn (which would move
+    // every sample). After every update, the count it reports is that of a scan of every
+    // ball.
+    const Ellipsoid flat(Point3{0, 0, 0}, 1.0, 1.0, 0.35);
+    std::vector<Point3> P0;
+    for (const Point3& p : flat.sample_uniform(1500, 29))
+        for (const double sx : {1.0, -1.0})
+            for (const double sy : {1.0, -1.0}) P0.push_back(Point3{sx * p.x, sy * p.y, p.z});
+    DeformOptions params;
+    params.lambda = 1e-9;
+    params.h0 = 0.08;
+    params.emergency_steps = false;
+    DeformingMesh dm(P0, params, {.surface = &flat});
+    InvariantOptions io;
+    io.empty_balls_soft = true;
+    std::size_t most = 0, last = 0;
+    for (int t = 1; t <= 10; ++t) {
+        const double f = t <= 8 ? t / 8.0 : 0.0;
+        std::vector<Point3> P = P0;
+        for (Point3& p : P) {
+            if (p.z >= 0) continue;
+            const double r2 = p.x * p.x + p.y * p.y;
+            const double u = std::clamp((0.6 - std::sqrt(r2)) / 0.2, 0.0, 1.0), w = u * u * (3 - 2 * u);
+            const double under = 0.35 * std::sqrt(std::max(0.0, 1 - r2)) - 0.03;
+            p.z += f * w * (under - p.z);
+        }
+        dm.advance(t, P);
+        const DeformUpdateReport u = dm.update();
+        std::size_t reported = 0;
+        for (const ViolationRecord& v : u.violations)
+            if (v.kind == Violation::NonEmptyBall && v.detail.find(" diametric balls hold a vertex") != std::string::npos)
+                reported = std::stoul(v.detail);
+        const auto full = static_cast<std::size_t>(dm.check_invariants(io).integer("nonempty_balls"));
+        EXPECT_EQ(reported, full) << "t = " << t;
+        most = std::max(most, full);
+        last = full;
+    }
+    EXPECT_GT(most, 20u);
+    EXPECT_LT(last, most / 4);
 }
 
 TEST(DeformMonitors, DeletingACapCoarsensTheMeshAndSaysSo) {
