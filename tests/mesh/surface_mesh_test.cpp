@@ -323,6 +323,32 @@ TEST(SurfaceMesh, FlipKeepsOrientationAndVertices) {
     EXPECT_EQ(m.positions(), s.points);
 }
 
+/// Operation `op` (0 flip, 1 face split, 2 edge split, 3 collapse, 4 vertex removal) on a
+/// random element of a unit-sphere mesh; false when the element drawn is deleted (nothing
+/// tried). A flip or collapse that is not allowed is skipped.
+bool random_operation(SurfaceMesh& m, Rng& rng, int op) {
+    if (op == 0) {
+        const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+        if (!m.is_deleted(e) && m.is_flip_ok(e)) m.flip(e);
+    } else if (op == 1) {
+        const Face f(static_cast<std::uint32_t>(rng.below(m.faces_size())));
+        if (m.is_deleted(f)) return false;
+        const auto v = m.face_vertices(f);
+        m.split_face(f, normalized((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0));
+    } else if (op == 2) {
+        const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
+        if (m.is_deleted(e)) return false;
+        m.split_edge(e, normalized((m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))) * 0.5));
+    } else if (op == 3) {
+        const Halfedge h(static_cast<std::uint32_t>(rng.below(m.halfedges_size())));
+        if (!m.is_deleted(h) && m.is_collapse_ok(h)) m.collapse(h);
+    } else {
+        const Vertex v(static_cast<std::uint32_t>(rng.below(m.vertices_size())));
+        if (!m.is_deleted(v)) (void)m.remove_vertex(v);
+    }
+    return true;
+}
+
 TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
     for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
         SurfaceMesh m = test::icosphere(2);
@@ -331,25 +357,7 @@ TEST(SurfaceMesh, RandomOperationSequencesStayValid) {
             const int op = static_cast<int>(rng.below(5));
             const std::string ctx = "seed " + std::to_string(seed) + " step " + std::to_string(step) +
                                     " op " + std::to_string(op);
-            if (op == 0) {
-                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
-                if (!m.is_deleted(e) && m.is_flip_ok(e)) m.flip(e);
-            } else if (op == 1) {
-                const Face f(static_cast<std::uint32_t>(rng.below(m.faces_size())));
-                if (m.is_deleted(f)) continue;
-                const auto v = m.face_vertices(f);
-                m.split_face(f, normalized((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0));
-            } else if (op == 2) {
-                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
-                if (m.is_deleted(e)) continue;
-                m.split_edge(e, normalized((m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))) * 0.5));
-            } else if (op == 3) {
-                const Halfedge h(static_cast<std::uint32_t>(rng.below(m.halfedges_size())));
-                if (!m.is_deleted(h) && m.is_collapse_ok(h)) m.collapse(h);
-            } else {
-                const Vertex v(static_cast<std::uint32_t>(rng.below(m.vertices_size())));
-                if (!m.is_deleted(v)) (void)m.remove_vertex(v);
-            }
+            if (!random_operation(m, rng, op)) continue;
             const auto r = check_mesh(m, {.require_closed = true, .check_degenerate = false});
             ASSERT_TRUE(r.ok()) << ctx << "\n" << r.summary("  ");
             ASSERT_EQ(r.integer("euler"), 2) << ctx;
@@ -591,25 +599,7 @@ TEST(SurfaceMesh, FaceLogHoldsEveryFaceAnOperationChanged) {
             const int op = static_cast<int>(rng.below(5));
             const std::string ctx = "seed " + std::to_string(seed) + " step " + std::to_string(step) + " op " +
                                     std::to_string(op);
-            if (op == 0) {
-                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
-                if (!m.is_deleted(e) && m.is_flip_ok(e)) m.flip(e);
-            } else if (op == 1) {
-                const Face f(static_cast<std::uint32_t>(rng.below(m.faces_size())));
-                if (m.is_deleted(f)) continue;
-                const auto v = m.face_vertices(f);
-                m.split_face(f, normalized((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0));
-            } else if (op == 2) {
-                const Edge e(static_cast<std::uint32_t>(rng.below(m.edges_size())));
-                if (m.is_deleted(e)) continue;
-                m.split_edge(e, normalized((m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))) * 0.5));
-            } else if (op == 3) {
-                const Halfedge h(static_cast<std::uint32_t>(rng.below(m.halfedges_size())));
-                if (!m.is_deleted(h) && m.is_collapse_ok(h)) m.collapse(h);
-            } else {
-                const Vertex v(static_cast<std::uint32_t>(rng.below(m.vertices_size())));
-                if (!m.is_deleted(v)) (void)m.remove_vertex(v);
-            }
+            if (!random_operation(m, rng, op)) continue;
             const std::vector<Corners> after = corners(m);
             std::vector<char> logged(m.faces_size(), 0);
             for (std::uint32_t f : m.face_log()) {
