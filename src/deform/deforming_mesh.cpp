@@ -148,6 +148,16 @@ struct DeformingMesh::Impl {
     /// vertex, folding the mesh or making it intersect itself): RefineVert does not promote
     /// them again until the next update, so a refusal costs one try, not one per pass.
     std::vector<char> refused;
+    std::vector<SampleId> refused_ids;  // the slots set in `refused`
+    void refuse(SampleId p) {
+        if (!refused[p]) refused_ids.push_back(p);
+        refused[p] = 1;
+    }
+    void clear_refused() {
+        for (SampleId p : refused_ids)
+            if (p < refused.size()) refused[p] = 0;
+        refused_ids.clear();
+    }
     /// size_factor * lfs of each slot, graded (+inf: no bound; NaN: not yet known, a sample
     /// inserted after t = 0 until it is placed). Read only when size_on.
     std::vector<double> size;
@@ -319,11 +329,83 @@ struct DeformingMesh::Impl {
     /// The same over the vertices in `box`.
     PointGrid vertex_grid(double cell, const Bbox3& box) const {
         std::vector<Vertex> vs;
-        vs.reserve(mesh.n_vertices());
-        for (Vertex v : mesh.vertices())
-            if (box.contains(mesh.position(v))) vs.push_back(v);
+        if (!locate(box, vs)) {
+            vs.reserve(mesh.n_vertices());
+            for (Vertex v : mesh.vertices())
+                if (box.contains(mesh.position(v))) vs.push_back(v);
+        }
         return PointGrid::bulk(grid_cell(cell), vs.size(), [&](std::size_t k) { return mesh.position(vs[k]); },
                                [&](std::size_t k) { return sid(vs[k]); });
+    }
+
+    /// A grid of every vertex (by sample id) kept across updates, so that the work of a local
+    /// update finds the vertices in its box without a pass over the mesh: brought up to date
+    /// from the changes (the vertices of every face changed since) when read, built again
+    /// when everything may have changed. A sample that stopped being a vertex may linger in
+    /// it; readers keep only current vertices.
+    struct Locator {
+        PointGrid grid;
+        std::vector<Point3> at;  // by slot: where the grid holds it
+        std::vector<char> in;    // by slot: held
+        Cursor cursor;
+    };
+    mutable Locator loc;
+    /// Brings loc up to date.
+    void locator_catch_up() const {
+        const bool known = changes_since(loc.cursor, [&](Face f) {
+            if (mesh.is_deleted(f)) return;
+            for (Vertex v : mesh.face_vertices(f)) {
+                const SampleId s = sid(v);
+                const Point3& p = mesh.position(v);
+                if (s >= loc.in.size()) {
+                    loc.in.resize(state.size(), 0);
+                    loc.at.resize(state.size());
+                }
+                if (loc.in[s]) {
+                    if (loc.at[s] == p) continue;
+                    loc.grid.erase(s, loc.at[s]);
+                }
+                loc.grid.insert(s, p);
+                loc.at[s] = p;
+                loc.in[s] = 1;
+            }
+        });
+        if (known) return;
+        loc.in.assign(state.size(), 0);
+        loc.at.assign(state.size(), Point3{});
+        std::vector<Vertex> vs;
+        vs.reserve(mesh.n_vertices());
+        for (Vertex v : mesh.vertices()) {
+            vs.push_back(v);
+            loc.in[sid(v)] = 1;
+            loc.at[sid(v)] = mesh.position(v);
+        }
+        loc.grid = PointGrid::bulk(grid_cell(kLocatorCell * max_circumradius()), vs.size(),
+                                   [&](std::size_t k) { return mesh.position(vs[k]); },
+                                   [&](std::size_t k) { return sid(vs[k]); });
+    }
+    /// The locator's cell, in units of R.
+    static constexpr double kLocatorCell = 4;
+    /// The vertices in `box`, in index order, through the locator. False (and `out`
+    /// untouched) when a pass over the vertices is cheaper: an unbounded box, or one that
+    /// spans more cells than there are vertices.
+    bool locate(const Bbox3& box, std::vector<Vertex>& out) const {
+        if (!(std::isfinite(box.min.x) && std::isfinite(box.min.y) && std::isfinite(box.min.z) &&
+              std::isfinite(box.max.x) && std::isfinite(box.max.y) && std::isfinite(box.max.z)))
+            return false;
+        if (box.min.x > box.max.x || box.min.y > box.max.y || box.min.z > box.max.z) return true;  // empty
+        locator_catch_up();
+        const Vec3 half = (box.max - box.min) * 0.5;
+        const double r = std::max({half.x, half.y, half.z});
+        const double side = 2 * r / loc.grid.cell() + 2;
+        if (side * side * side > static_cast<double>(mesh.n_vertices())) return false;
+        loc.grid.for_each_candidate((box.min + box.max) * 0.5, r, [&](std::uint32_t s) {
+            if (state[s] != State::Vertex) return;
+            const Vertex v = vert_of[s];
+            if (box.contains(mesh.position(v))) out.push_back(v);
+        });
+        std::sort(out.begin(), out.end(), [](Vertex a, Vertex b) { return a.idx() < b.idx(); });
+        return true;
     }
 
     /// The face nearest to p, among the faces around vertices within search radius r
@@ -367,7 +449,7 @@ struct DeformingMesh::Impl {
                                               [&](std::uint32_t s) { return state[s] == State::Vertex; });
             violation(Violation::FarSample, idstr(p) + " is " + std::to_string(d) +
                                                 " from the mesh (R = " + std::to_string(R) + "); kept dormant");
-            refused[p] = 1;
+            refuse(p);
             attach(p, w);
             return;
         }
@@ -379,7 +461,7 @@ struct DeformingMesh::Impl {
             // vertices (spec §10.3); without that edge it waits.
             ao.split_edge = crease_edge_around(p);
             if (!ao.split_edge.is_valid()) {
-                refused[p] = 1;
+                refuse(p);
                 attach(p, grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                        [&](std::uint32_t s) { return state[s] == State::Vertex; }).first);
                 return;
@@ -396,7 +478,7 @@ struct DeformingMesh::Impl {
         if (r.kind == AddCase::Vertex || r.kind == AddCase::LockedEdge) {
             violation(Violation::AddVertexCase, idstr(p) + " falls on the vertex of " + idstr(sid(r.near_vertex)) +
                                                     (r.kind == AddCase::LockedEdge ? " or on its crease edge" : ""));
-            refused[p] = 1;
+            refuse(p);
             attach(p, sid(r.near_vertex));
             return;
         }
@@ -408,7 +490,7 @@ struct DeformingMesh::Impl {
             // again.
             violation(Violation::AddFolded, idstr(p) + (folded ? " would fold the mesh" : " would make the mesh intersect itself") +
                                                 "; kept dormant");
-            refused[p] = 1;
+            refuse(p);
             if (remove_sample(p, nullptr)) {
                 const auto [w, dw] = grid.nearest(P(p), [&](std::uint32_t s) { return P(s); },
                                                   [&](std::uint32_t s) { return state[s] == State::Vertex; });
@@ -804,6 +886,8 @@ struct DeformingMesh::Impl {
     }
     /// kStale's bit for the faces whose ball held a vertex at the last scan_changed_balls().
     static constexpr std::uint8_t kBallHeld = 8;
+    /// The faces with kBallHeld (some may have been deleted since).
+    std::vector<Face> ball_held;
     /// scan_balls() from the faces whose answer may have changed since the last call
     /// (stale_balls): those changed, those with a vertex within 2R of a changed face's vertex
     /// (a ball, of radius <= R, that a moved or new vertex entered), and those whose ball held
@@ -832,8 +916,8 @@ struct DeformingMesh::Impl {
                     box.extend(mesh.position(v));
                     moved.push_back(sid(v));
                 }
-            for (Face f : mesh.faces())
-                if (flag[f] & kBallHeld) {
+            for (Face f : ball_held)
+                if (!mesh.is_deleted(f) && (flag[f] & kBallHeld)) {
                     take(f);
                     for (Vertex v : mesh.face_vertices(f)) box.extend(mesh.position(v));
                 }
@@ -853,21 +937,22 @@ struct DeformingMesh::Impl {
             for (Face f : changed) take(f);
         }
         const std::vector<std::uint32_t> patch = face_patches();
-        std::vector<std::pair<std::size_t, std::uint32_t>> hit(mesh.faces_size(), {0, kNoSlot});
+        // Every face that held a vertex is in `test`, so the faces that hold one now are
+        // those of `test` that do.
+        BallScan b;
+        ball_held.clear();
         for (Face f : test) {
-            hit[f.idx()] = ball_hits(f, grid, patch);
-            flag[f] = static_cast<std::uint8_t>(hit[f.idx()].first > 0 ? flag[f] | kBallHeld : flag[f] & ~kBallHeld);
+            const auto [hits, inside] = ball_hits(f, grid, patch);
+            flag[f] = static_cast<std::uint8_t>(hits > 0 ? flag[f] | kBallHeld : flag[f] & ~kBallHeld);
+            if (hits == 0) continue;
+            ball_held.push_back(f);
+            if (b.count++ == 0 || f.idx() < b.first.idx()) {
+                b.first = f;
+                b.first_hits = hits;
+                b.inside = inside;
+            }
         }
         looked(stale_balls, true);
-        BallScan b;
-        for (Face f : mesh.faces())
-            if (flag[f] & kBallHeld) {
-                if (b.count++ == 0) {
-                    b.first = f;
-                    b.first_hits = hit[f.idx()].first;
-                    b.inside = hit[f.idx()].second;
-                }
-            }
         return b;
     }
 
@@ -1068,6 +1153,7 @@ struct DeformingMesh::Impl {
 
     /// Decimation of §4.7 (factor 1/2). With factor 1/3 it is the spacing repair of §9 P7.
     /// Returns the number of vertices it removed.
+    std::vector<char> decimation_black;  // by slot, all 0 between calls
     std::size_t decimation(double factor = 0.5) {
         const double R = max_circumradius();
         PointGrid grid = vertex_grid(R);
@@ -1094,8 +1180,16 @@ struct DeformingMesh::Impl {
         // lengthens crease edges, which no flip can shorten, and R would grow with every
         // deletion. The spacing repair (1/3) still thins a compressed crease.
         const bool spare_creases = factor > 0.4;
-        std::vector<char> black(state.size(), 0);
+        std::vector<char>& black = decimation_black;
+        black.resize(state.size(), 0);
         std::vector<SampleId> blacks;
+        struct Whiten {  // leaves `black` all 0 for the next call
+            std::vector<char>& black;
+            std::vector<SampleId>& blacks;
+            ~Whiten() {
+                for (SampleId w : blacks) black[w] = 0;
+            }
+        } whiten{black, blacks};
         for (SampleId v : vs) {
             if (black[v]) continue;
             grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
@@ -1111,13 +1205,10 @@ struct DeformingMesh::Impl {
         }
         if (blacks.empty()) return 0;
         std::sort(blacks.begin(), blacks.end(), before);
-        std::vector<SampleId> whites;
-        whites.reserve(mesh.n_vertices() - blacks.size());
-        const Bbox3 box = region_box();
-        for (Vertex x : mesh.vertices())
-            if (!black[sid(x)] && (region.empty() || box.contains(P(sid(x))))) whites.push_back(sid(x));
-        const PointGrid white = PointGrid::bulk(grid_cell(R), pos, whites);
+        // The samples of the removed vertices go to the nearest of the others (the vertices
+        // of `grid` that are not black: the removals below take only black ones).
         auto posf = [&](std::uint32_t s) { return P(s); };
+        auto white = [&](std::uint32_t s) { return !black[s]; };
         std::size_t removed = 0;
         for (SampleId u : blacks) {
             if (mesh.n_vertices() <= 4) break;
@@ -1131,12 +1222,12 @@ struct DeformingMesh::Impl {
             ++removed;
             moving.push_back(u);
             for (SampleId p : moving) {
-                const auto [w, d] = white.nearest(P(p), posf, [](std::uint32_t) { return true; });
+                const auto [w, d] = grid.nearest(P(p), posf, white);
                 ++cur.distance_evals;
                 attach(p, w);
             }
         }
-        if (removed > 0) std::fill(refused.begin(), refused.end(), 0);  // the mesh changed around the refusals
+        if (removed > 0) clear_refused();  // the mesh changed around the refusals
         return removed;
     }
 
@@ -1469,7 +1560,7 @@ struct DeformingMesh::Impl {
         rep.emergency = !internal && emergency_requested;
         cur = {};
         invalidate_pairs();  // nothing in an update reads the tables
-        std::fill(refused.begin(), refused.end(), 0);
+        clear_refused();
         rep.R_before = max_circumradius();
         rep.vertices_before = mesh.n_vertices();
         refine_vert();
@@ -1536,9 +1627,13 @@ struct DeformingMesh::Impl {
     void finish_update() {
         if (mesh.has_garbage()) {
             for (Tracker* tr : trackers()) drain(*tr);  // what they have not seen survives the renumbering
+            const bool locator_known = loc.cursor.gen == gen;
+            if (locator_known) locator_catch_up();  // by sample: the renumbering moves nothing
             mesh.garbage_collection();
             all_changed();
             for (Tracker* tr : trackers()) tr->cursor = Cursor{gen, 0, 0};
+            if (locator_known) loc.cursor = Cursor{gen, 0, 0};
+            relist();
         }
         strain_e.assign(mesh.edges_size(), 0.0);
         strain_d.assign(pos.size(), 0.0);
@@ -1647,6 +1742,9 @@ struct DeformingMesh::Impl {
         std::uint8_t bit;
         Cursor cursor;
         bool all = true;
+        /// The faces whose bit drain() set since t last looked (each once; some may have been
+        /// deleted since): what stale_faces() and looked() read instead of every face.
+        std::vector<Face> list;
     };
     static constexpr const char* kStale = "f:stale";
     Tracker stale_intersection{1}, stale_flip{2}, stale_balls{4};
@@ -1658,17 +1756,27 @@ struct DeformingMesh::Impl {
     void drain(Tracker& t) {
         auto flag = stale_property();
         const bool known = changes_since(t.cursor, [&](Face f) {
-            if (!mesh.is_deleted(f)) flag[f] |= t.bit;
+            if (!mesh.is_deleted(f) && !(flag[f] & t.bit)) {
+                flag[f] |= t.bit;
+                t.list.push_back(f);
+            }
         });
         if (!known) t.all = true;
     }
-    /// The live faces changed since t last looked (all faces when t.all), after drain(t).
+    /// The live faces changed since t last looked, in index order (all faces when t.all),
+    /// after drain(t).
     [[nodiscard]] std::vector<Face> stale_faces(Tracker& t) {
         drain(t);
         std::vector<Face> out;
+        if (t.all) {
+            out.reserve(mesh.n_faces());
+            for (Face f : mesh.faces()) out.push_back(f);
+            return out;
+        }
         const auto flag = stale_property();
-        for (Face f : mesh.faces())
-            if (t.all || (flag[f] & t.bit)) out.push_back(f);
+        for (Face f : t.list)
+            if (!mesh.is_deleted(f) && (flag[f] & t.bit)) out.push_back(f);
+        std::sort(out.begin(), out.end(), [](Face a, Face b) { return a.idx() < b.idx(); });
         return out;
     }
     /// t has looked at everything (`ok`: and found it good; otherwise it reads every face
@@ -1677,8 +1785,25 @@ struct DeformingMesh::Impl {
         drain(t);  // the changes t's own work made
         auto flag = stale_property();
         const auto keep = static_cast<std::uint8_t>(~t.bit);
-        for (Face f : mesh.faces()) flag[f] &= keep;
+        if (t.all) {
+            for (Face f : mesh.faces()) flag[f] &= keep;
+        } else {
+            for (Face f : t.list)
+                if (f.idx() < mesh.faces_size()) flag[f] &= keep;
+        }
+        t.list.clear();
         t.all = !ok;
+    }
+    /// After a renumbering, the lists again from the bits (one pass over the faces).
+    void relist() {
+        for (Tracker* tr : trackers()) tr->list.clear();
+        ball_held.clear();
+        const auto flag = stale_property();
+        for (Face f : mesh.faces()) {
+            for (Tracker* tr : trackers())
+                if (flag[f] & tr->bit) tr->list.push_back(f);
+            if (flag[f] & kBallHeld) ball_held.push_back(f);
+        }
     }
 
     /// Whether the mesh intersects itself now (spec §10.4). Two faces that neither moved nor
@@ -1989,7 +2114,11 @@ struct DeformingMesh::Impl {
         vsample = mesh.add_vertex_property<SampleId>("v:sample", kNoSample);
         if (auto old = stale_property(); old.is_valid()) mesh.remove_property(old);
         (void)mesh.add_face_property<std::uint8_t>(kStale, 0);
-        for (Tracker* tr : trackers()) tr->all = true;
+        for (Tracker* tr : trackers()) {
+            tr->all = true;
+            tr->list.clear();
+        }
+        ball_held.clear();
         // The samples that were vertices or dormant (queued insertions stay queued).
         std::vector<SampleId> reassign;
         for (SampleId s = 0; s < state.size(); ++s) {
