@@ -1154,18 +1154,101 @@ struct DeformingMesh::Impl {
     /// Decimation of §4.7 (factor 1/2). With factor 1/3 it is the spacing repair of §9 P7.
     /// Returns the number of vertices it removed.
     std::vector<char> decimation_black;  // by slot, all 0 between calls
+
+    /// What lets the spacing repair of an update at an integer time look only where a close
+    /// pair can be: the close pairs found by the last full scan, at R_near (a superset of the
+    /// close pairs of the vertices unchanged since, while R <= R_near: the threshold grows
+    /// with R), and the vertices changed since then (moved, made, or with a face made or
+    /// relinked), by slot.
+    struct SpacingScan {
+        bool valid = false;
+        double R_near = 0;
+        std::vector<std::pair<SampleId, SampleId>> near;
+        Cursor cursor;
+        std::vector<char> touched;
+        std::vector<SampleId> touched_ids;
+    };
+    SpacingScan spacing;
+    /// Brings spacing.touched up to date (false: everything may have changed since).
+    bool spacing_catch_up() {
+        if (!spacing.valid) return false;
+        const bool known = changes_since(spacing.cursor, [&](Face f) {
+            if (mesh.is_deleted(f)) return;
+            for (Vertex v : mesh.face_vertices(f)) {
+                const SampleId x = sid(v);
+                if (x >= spacing.touched.size()) spacing.touched.resize(state.size(), 0);
+                if (!spacing.touched[x]) {
+                    spacing.touched[x] = 1;
+                    spacing.touched_ids.push_back(x);
+                }
+            }
+        });
+        if (!known) spacing.valid = false;
+        return spacing.valid;
+    }
+
     std::size_t decimation(double factor = 0.5) {
         const double R = max_circumradius();
-        PointGrid grid = vertex_grid(R);
-        // Corners, then crease vertices, then the others, each in slot order: a surface
-        // vertex too close to a crease vertex is the one removed (spec §10.3).
+        // The spacing repair at an integer time, without creases: every vertex when the last
+        // full scan is out of date, otherwise the vertices of a close pair among those changed
+        // since, their close partners and the near pairs of that scan (a superset of the
+        // vertices that have a close partner; the others mark nothing, so the marks are those
+        // of a scan of every vertex).
+        const bool spacing_global = region.empty() && factor < 0.4 && !creases_on;
+        const bool incremental = spacing_global && params.incremental_spacing && spacing_catch_up() && R <= spacing.R_near &&
+                                 4 * spacing.touched_ids.size() < mesh.n_vertices();
         std::vector<SampleId> vs;  // the vertices looked around (a local update: the region's)
-        vs.reserve(region.empty() ? mesh.n_vertices() : region_ids.size());
-        if (region.empty())
-            for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
-        else
-            for (SampleId s : region_ids)
-                if (state[s] == State::Vertex) vs.push_back(s);
+        PointGrid grid;
+        if (incremental) {
+            locator_catch_up();
+            for (SampleId x : spacing.touched_ids) {
+                if (state[x] != State::Vertex) continue;
+                bool close = false;
+                loc.grid.for_each_candidate(P(x), factor * rs(x, R), [&](std::uint32_t w) {
+                    if (w == x || state[w] != State::Vertex) return;
+                    ++cur.distance_evals;
+                    if (distance(P(w), P(x)) < factor * std::min(rs(x, R), rs(w, R))) {
+                        vs.push_back(w);
+                        close = true;
+                    }
+                });
+                if (close) vs.push_back(x);
+            }
+            for (const auto& [a, b] : spacing.near)
+                if (state[a] == State::Vertex && state[b] == State::Vertex) {
+                    vs.push_back(a);
+                    vs.push_back(b);
+                }
+            std::sort(vs.begin(), vs.end());
+            vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+        } else {
+            grid = vertex_grid(R);
+            vs.reserve(region.empty() ? mesh.n_vertices() : region_ids.size());
+            if (region.empty())
+                for (Vertex v : mesh.vertices()) vs.push_back(sid(v));
+            else
+                for (SampleId s : region_ids)
+                    if (state[s] == State::Vertex) vs.push_back(s);
+        }
+        const PointGrid& candidates = incremental ? loc.grid : grid;
+        // A full scan at an integer time starts the record of what changes after it.
+        const bool record = spacing_global && !incremental;
+        const double R_near = R;  // a margin above R makes the list long (most edges are near R / 3)
+        if (record) {
+            spacing.valid = true;
+            spacing.R_near = R_near;
+            spacing.near.clear();
+            for (SampleId x : spacing.touched_ids)
+                if (x < spacing.touched.size()) spacing.touched[x] = 0;
+            spacing.touched_ids.clear();
+            spacing.cursor = Cursor{gen, mesh.face_log().size(), moved_log.size()};
+            for (SampleId v : vs)
+                grid.for_each_candidate(P(v), factor * rs(v, R_near), [&](std::uint32_t w) {
+                    if (w <= v || state[w] != State::Vertex) return;
+                    if (distance(P(w), P(v)) < factor * std::min(rs(v, R_near), rs(w, R_near)))
+                        spacing.near.emplace_back(v, w);
+                });
+        }
         std::vector<char> on_crease;
         if (creases_on) {
             on_crease.assign(state.size(), 0);
@@ -1192,7 +1275,7 @@ struct DeformingMesh::Impl {
         } whiten{black, blacks};
         for (SampleId v : vs) {
             if (black[v]) continue;
-            grid.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
+            candidates.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
                 if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && !on_crease.empty() && on_crease[w]))
                     return;
                 if (!region.empty() && !region[w]) return;  // a local update removes only in its region
@@ -1208,7 +1291,7 @@ struct DeformingMesh::Impl {
         // The samples of the removed vertices go to the nearest of the others (the vertices
         // of `grid` that are not black: the removals below take only black ones).
         auto posf = [&](std::uint32_t s) { return P(s); };
-        auto white = [&](std::uint32_t s) { return !black[s]; };
+        auto white = [&](std::uint32_t s) { return state[s] == State::Vertex && !black[s]; };
         std::size_t removed = 0;
         for (SampleId u : blacks) {
             if (mesh.n_vertices() <= 4) break;
@@ -1222,7 +1305,7 @@ struct DeformingMesh::Impl {
             ++removed;
             moving.push_back(u);
             for (SampleId p : moving) {
-                const auto [w, d] = grid.nearest(P(p), posf, white);
+                const auto [w, d] = candidates.nearest(P(p), posf, white);
                 ++cur.distance_evals;
                 attach(p, w);
             }
@@ -1627,12 +1710,15 @@ struct DeformingMesh::Impl {
     void finish_update() {
         if (mesh.has_garbage()) {
             for (Tracker* tr : trackers()) drain(*tr);  // what they have not seen survives the renumbering
+            // The locator and the spacing scan go by sample: the renumbering moves nothing.
             const bool locator_known = loc.cursor.gen == gen;
-            if (locator_known) locator_catch_up();  // by sample: the renumbering moves nothing
+            if (locator_known) locator_catch_up();
+            const bool spacing_known = spacing_catch_up();
             mesh.garbage_collection();
             all_changed();
             for (Tracker* tr : trackers()) tr->cursor = Cursor{gen, 0, 0};
             if (locator_known) loc.cursor = Cursor{gen, 0, 0};
+            if (spacing_known) spacing.cursor = Cursor{gen, 0, 0};
             relist();
         }
         strain_e.assign(mesh.edges_size(), 0.0);

@@ -178,6 +178,76 @@ double largest_circumradius_of(const SurfaceMesh& m) {
     return r;
 }
 
+TEST(Substep, TheIncrementalSpacingScanRemovesWhatAScanOfEveryVertexRemoves) {
+    // A dimple pushed in and released, again and again: the compression brings vertex pairs
+    // below R/3, and the spacing repair of each update at an integer time removes one vertex
+    // of each pair. Looking only around the vertices changed since the last full scan (and at
+    // the pairs it left) must give the same removals, flips and mesh as looking at every vertex.
+    // A budget so large that no unit is cut: the updates at integer times do all the work.
+    const auto P0 = sphere_samples(3000, 5);
+    Sphere sphere(Point3{0, 0, 0}, 1.0);
+    DeformOptions o = options(0.1);
+    o.kappa = 2;
+    DeformingMesh inc(P0, o, {.surface = &sphere});
+    o.incremental_spacing = false;
+    DeformingMesh full(P0, o, {.surface = &sphere});
+    std::size_t removals = 0;
+    for (int t = 1; t <= 24; ++t) {
+        const int k = t % 12;
+        const auto at = dimpled(P0, 0.03 * (k <= 6 ? k : 12 - k));
+        (void)inc.advance(t, at);
+        (void)full.advance(t, at);
+        const DeformUpdateReport a = inc.update(), b = full.update();
+        removals += a.counters.removals;
+        EXPECT_EQ(a.counters.removals, b.counters.removals) << "t = " << t;
+        EXPECT_EQ(a.counters.spacing_repairs, b.counters.spacing_repairs) << "t = " << t;
+        ASSERT_EQ(faces(inc), faces(full)) << "t = " << t;
+    }
+    EXPECT_GT(removals, 0u) << "no spacing repair to compare";
+    EXPECT_EQ(inc.totals().flips, full.totals().flips);
+}
+
+TEST(Substep, TheIncrementalSpacingScanFindsAStillSheetThatAMovedSheetCameClose) {
+    // A flat ellipsoid's lower sheet is pushed up to 0.01 under its upper sheet, which stays
+    // still (the samples mirrored in x and y: no best-fit turn), with a budget so large that
+    // no unit is cut. The close pairs join a moved vertex to a vertex that never changed and
+    // is no neighbour of it; which one of the pair goes depends on their order, so the scan
+    // must look at both. No samples near the rims at x = +-1: the triangles there are the
+    // largest, so that R (and the threshold R/3) stays put while the lower sheet moves.
+    const Ellipsoid flat(Point3{0, 0, 0}, 1.0, 1.0, 0.35);
+    std::vector<Point3> P0;
+    for (const Point3& p : flat.sample_uniform(1500, 29))
+        if (std::abs(p.x) < 0.85 || std::abs(p.y) > 0.2)
+            for (const double sx : {1.0, -1.0})
+                for (const double sy : {1.0, -1.0}) P0.push_back(Point3{sx * p.x, sy * p.y, p.z});
+    DeformOptions o;
+    o.lambda = 1e-9;
+    o.h0 = 0.08;
+    o.kappa = 2;
+    o.emergency_steps = false;
+    DeformingMesh inc(P0, o, {.surface = &flat});
+    o.incremental_spacing = false;
+    DeformingMesh full(P0, o, {.surface = &flat});
+    std::size_t removals = 0;
+    for (int t = 1; t <= 8; ++t) {
+        std::vector<Point3> P = P0;
+        for (Point3& p : P) {
+            if (p.z >= 0) continue;
+            const double r2 = p.x * p.x + p.y * p.y;
+            const double u = std::clamp((0.6 - std::sqrt(r2)) / 0.2, 0.0, 1.0), w = u * u * (3 - 2 * u);
+            const double under = 0.35 * std::sqrt(std::max(0.0, 1 - r2)) - 0.01;
+            p.z += t / 8.0 * w * (under - p.z);
+        }
+        (void)inc.advance(t, P);
+        (void)full.advance(t, P);
+        const DeformUpdateReport a = inc.update(), b = full.update();
+        removals += a.counters.removals;
+        EXPECT_EQ(a.counters.removals, b.counters.removals) << "t = " << t;
+        ASSERT_EQ(faces(inc), faces(full)) << "t = " << t;
+    }
+    EXPECT_GT(removals, 0u) << "no spacing repair to compare";
+}
+
 TEST(Substep, UpdatesBetweenSubStepsStayInTheMovingRegion) {
     // Spec §10.1: a fast dimple at the pole, pushed in and released, the rest of the sphere
     // still. The updates between sub-steps work on the pairs over their budget and their

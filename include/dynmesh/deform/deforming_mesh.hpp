@@ -82,6 +82,12 @@ struct DeformOptions {
     /// closer than R/3 (old vertices under compression), remove one vertex of each such pair
     /// (Decimation with radius R/3) and run RefineVert, so spacing >= R/3 holds at every step.
     bool spacing_repair = true;
+    /// The spacing repair of an update at an integer time looks only where a close pair can
+    /// be: around the vertices changed since its last scan of every vertex, and at the close
+    /// pairs that scan found (a scan of every vertex again when R has grown since). false:
+    /// every vertex at every update, the reference the incremental scan is tested against
+    /// (the same removals).
+    bool incremental_spacing = true;
     /// Spec §4.3: after the global flips of every update at an integer time (and at t = 0;
     /// not after the updates between sub-steps), check every
     /// triangle's diametric ball against a grid of the vertices and report the balls that
