@@ -2347,6 +2347,7 @@ DeformingMesh::DeformingMesh(std::span<const Point3> positions, const DeformOpti
     I.init.faces = I.mesh.n_faces();
     I.init.R0 = I.R_last;
     I.init.next_step = I.next;
+    I.init.self_intersecting = I.intersection_test();
     {   // spec §4.1: check the invariants at 0 and report any violation
         InvariantOptions io;
         io.self_intersections = false;

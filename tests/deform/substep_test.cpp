@@ -393,6 +393,40 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
 }
 
 
+TEST(Substep, TheStartTestsTheWholeMeshAndAnIntersectionThereIsFoundByTheFirstUnit) {
+    // The whole mesh is tested once at t = 0; the tests of the units look at what changed
+    // since an embedded test, so after a start that intersects itself the first unit's test
+    // must still find the intersection, away from what the unit moved. A unit sphere A and a
+    // small sphere B, beside it (embedded) or cutting into it (not).
+    for (const double bx : {3.0, 1.0}) {
+        TriangleSoup soup = test::icosphere(3).to_soup();
+        const SurfaceMesh small = test::icosphere(2);
+        const auto offset = static_cast<std::uint32_t>(soup.points.size());
+        for (Vertex v : small.vertices()) soup.points.push_back(Point3{bx, 0, 0} + small.position(v) * 0.5);
+        for (const auto& t : small.to_soup().triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        const SurfaceMesh m = SurfaceMesh::from_soup(soup);
+        InitialSurface init;
+        init.mesh = &m;
+        for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
+        DeformOptions o = options(0.1);
+        o.init_refine = false;
+        const std::vector<Point3> P0 = soup.points;
+        DeformingMesh dm(P0, o, init);
+        const bool cut = bx < 2;
+        EXPECT_EQ(dm.init_report().self_intersecting, cut) << "B at x = " << bx;
+        EXPECT_EQ(count_self_intersections(dm.mesh()) > 0, cut);
+        // Unit 1 dimples A's far side, at x = -1, fast enough to be cut (so tested).
+        std::vector<Point3> p = P0;
+        for (std::size_t i = 0; i < offset; ++i) {
+            const double d = distance(P0[i], Point3{-1, 0, 0});
+            p[i] = P0[i] * (1 - 0.2 * (d < 0.5 ? 0.5 * (1 + std::cos(kPi * d / 0.5)) : 0.0));
+        }
+        const StepReport s1 = dm.advance(1, p);
+        ASSERT_GT(s1.substeps, 1u);
+        EXPECT_EQ(s1.self_intersecting, cut) << "B at x = " << bx;
+    }
+}
+
 TEST(Substep, AnIntersectionMadeByAnUncheckedUnitIsFoundByTheNextCheck) {
     // Spec §10.4: each test covers every face changed since the last embedded one, across the
     // updates (and their renumberings) between them. Two spheres: a small one B beside a unit

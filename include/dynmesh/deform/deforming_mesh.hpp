@@ -334,6 +334,9 @@ struct InitReport {
     std::vector<std::string> invariant_failures;
     std::size_t nonempty_balls = 0;
     std::string first_nonempty_ball;
+    /// Tri(0) intersects itself (CGAL's exact test of the whole mesh, run once at t = 0; the
+    /// tests after it look only at what changed since).
+    bool self_intersecting = false;
     /// Samples made vertices by running RefineVert to a fixed point at t = 0 (not in the
     /// paper's initialisation; it makes the state at t = 0 one that a rigid motion keeps),
     /// on the reference mesh's vertex set or by Add.
