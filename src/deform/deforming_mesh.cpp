@@ -1234,6 +1234,8 @@ struct DeformingMesh::Impl {
         // A full scan at an integer time starts the record of what changes after it.
         const bool record = spacing_global && !incremental;
         const double R_near = R;  // a margin above R makes the list long (most edges are near R / 3)
+        // The close pairs go to the list in the marking loop below, which then also looks
+        // around the vertices marked before their turn (they mark nothing).
         if (record) {
             spacing.valid = true;
             spacing.R_near = R_near;
@@ -1242,12 +1244,6 @@ struct DeformingMesh::Impl {
                 if (x < spacing.touched.size()) spacing.touched[x] = 0;
             spacing.touched_ids.clear();
             spacing.cursor = Cursor{gen, mesh.face_log().size(), moved_log.size()};
-            for (SampleId v : vs)
-                grid.for_each_candidate(P(v), factor * rs(v, R_near), [&](std::uint32_t w) {
-                    if (w <= v || state[w] != State::Vertex) return;
-                    if (distance(P(w), P(v)) < factor * std::min(rs(v, R_near), rs(w, R_near)))
-                        spacing.near.emplace_back(v, w);
-                });
         }
         std::vector<char> on_crease;
         if (creases_on) {
@@ -1274,8 +1270,13 @@ struct DeformingMesh::Impl {
             }
         } whiten{black, blacks};
         for (SampleId v : vs) {
-            if (black[v]) continue;
+            if (black[v] && !record) continue;
+            const bool marks = !black[v];
             candidates.for_each_candidate(P(v), factor * rs(v, R), [&](std::uint32_t w) {
+                if (record && w > v && state[w] == State::Vertex &&
+                    distance(P(w), P(v)) < factor * std::min(rs(v, R_near), rs(w, R_near)))
+                    spacing.near.emplace_back(v, w);
+                if (!marks) return;
                 if (w == v || state[w] != State::Vertex || corner_degree[w] > 0 || (spare_creases && !on_crease.empty() && on_crease[w]))
                     return;
                 if (!region.empty() && !region[w]) return;  // a local update removes only in its region

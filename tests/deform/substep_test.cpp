@@ -393,25 +393,41 @@ TEST(Substep, AJumpThatWouldFoldTheMeshIsFollowedWithoutAFold) {
 }
 
 
+/// A unit sphere A (icosphere of level 3) and a sphere B of radius 0.5 (level 2) centred at
+/// (bx, 0, 0): the soup, A's vertices first (B's from `offset` on).
+struct TwoSpheres {
+    TriangleSoup soup;
+    std::uint32_t offset = 0;
+};
+TwoSpheres two_spheres(double bx) {
+    TwoSpheres out{test::icosphere(3).to_soup()};
+    const SurfaceMesh small = test::icosphere(2);
+    out.offset = static_cast<std::uint32_t>(out.soup.points.size());
+    const std::uint32_t o = out.offset;
+    for (Vertex v : small.vertices()) out.soup.points.push_back(Point3{bx, 0, 0} + small.position(v) * 0.5);
+    for (const auto& t : small.to_soup().triangles) out.soup.triangles.push_back({t[0] + o, t[1] + o, t[2] + o});
+    return out;
+}
+/// A deforming mesh started on `m` as given, every vertex its sample, no refinement at t = 0.
+DeformingMesh on_given_mesh(const SurfaceMesh& m, const std::vector<Point3>& P0) {
+    InitialSurface init;
+    init.mesh = &m;
+    for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
+    DeformOptions o = options(0.1);
+    o.init_refine = false;
+    return DeformingMesh(P0, o, init);
+}
+
 TEST(Substep, TheStartTestsTheWholeMeshAndAnIntersectionThereIsFoundByTheFirstUnit) {
     // The whole mesh is tested once at t = 0; the tests of the units look at what changed
     // since an embedded test, so after a start that intersects itself the first unit's test
     // must still find the intersection, away from what the unit moved. A unit sphere A and a
     // small sphere B, beside it (embedded) or cutting into it (not).
     for (const double bx : {3.0, 1.0}) {
-        TriangleSoup soup = test::icosphere(3).to_soup();
-        const SurfaceMesh small = test::icosphere(2);
-        const auto offset = static_cast<std::uint32_t>(soup.points.size());
-        for (Vertex v : small.vertices()) soup.points.push_back(Point3{bx, 0, 0} + small.position(v) * 0.5);
-        for (const auto& t : small.to_soup().triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        const auto [soup, offset] = two_spheres(bx);
         const SurfaceMesh m = SurfaceMesh::from_soup(soup);
-        InitialSurface init;
-        init.mesh = &m;
-        for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
-        DeformOptions o = options(0.1);
-        o.init_refine = false;
         const std::vector<Point3> P0 = soup.points;
-        DeformingMesh dm(P0, o, init);
+        DeformingMesh dm = on_given_mesh(m, P0);
         const bool cut = bx < 2;
         EXPECT_EQ(dm.init_report().self_intersecting, cut) << "B at x = " << bx;
         EXPECT_EQ(count_self_intersections(dm.mesh()) > 0, cut);
@@ -434,19 +450,10 @@ TEST(Substep, AnIntersectionMadeByAnUncheckedUnitIsFoundByTheNextCheck) {
     // B rigidly into A: one sub-step, no fold, so untested; its update deletes a sample and
     // renumbers the mesh. Unit 3 releases the dimple: its test must find B inside A although
     // B did not move in it.
-    TriangleSoup soup = test::icosphere(3).to_soup();
-    const SurfaceMesh small = test::icosphere(2);
-    const auto offset = static_cast<std::uint32_t>(soup.points.size());
-    for (Vertex v : small.vertices()) soup.points.push_back(Point3{3, 0, 0} + small.position(v) * 0.5);
-    for (const auto& t : small.to_soup().triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const auto [soup, offset] = two_spheres(3);
     const SurfaceMesh m = SurfaceMesh::from_soup(soup);
-    InitialSurface init;
-    init.mesh = &m;
-    for (Vertex v : m.vertices()) init.vertex_samples.push_back(static_cast<SampleId>(v.idx()));
-    DeformOptions o = options(0.1);
-    o.init_refine = false;
     const std::vector<Point3> P0 = soup.points;
-    DeformingMesh dm(P0, o, init);
+    DeformingMesh dm = on_given_mesh(m, P0);
     auto at = [&](double depth, double slide) {
         std::vector<Point3> p = P0;
         for (std::size_t i = 0; i < p.size(); ++i) {
