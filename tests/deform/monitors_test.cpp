@@ -13,6 +13,7 @@
 #include "dynmesh/deform/run.hpp"
 #include "dynmesh/mesh/check.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "flat_sheets.hpp"
 #include "test_support.hpp"
 
 namespace dynmesh {
@@ -126,14 +127,7 @@ TEST(DeformMonitors, TheUpdatesBallCountFollowsVerticesIntoBallsOfTrianglesThatD
     std::size_t most = 0, last = 0;
     for (int t = 1; t <= 10; ++t) {
         const double f = t <= 8 ? t / 8.0 : 0.0;
-        std::vector<Point3> P = P0;
-        for (Point3& p : P) {
-            if (p.z >= 0) continue;
-            const double r2 = p.x * p.x + p.y * p.y;
-            const double u = std::clamp((0.6 - std::sqrt(r2)) / 0.2, 0.0, 1.0), w = u * u * (3 - 2 * u);
-            const double under = 0.35 * std::sqrt(std::max(0.0, 1 - r2)) - 0.03;
-            p.z += f * w * (under - p.z);
-        }
+        const std::vector<Point3> P = test::pushed_under(P0, f, 0.03);
         dm.advance(t, P);
         const DeformUpdateReport u = dm.update();
         std::size_t reported = 0;

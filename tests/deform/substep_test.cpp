@@ -17,6 +17,7 @@
 #include "dynmesh/mesh/soup.hpp"
 #include "dynmesh/metrics/self_intersection.hpp"
 #include "dynmesh/shapes/analytic.hpp"
+#include "flat_sheets.hpp"
 #include "test_support.hpp"
 
 namespace dynmesh {
@@ -230,14 +231,7 @@ TEST(Substep, TheIncrementalSpacingScanFindsAStillSheetThatAMovedSheetCameClose)
     DeformingMesh full(P0, o, {.surface = &flat});
     std::size_t removals = 0;
     for (int t = 1; t <= 8; ++t) {
-        std::vector<Point3> P = P0;
-        for (Point3& p : P) {
-            if (p.z >= 0) continue;
-            const double r2 = p.x * p.x + p.y * p.y;
-            const double u = std::clamp((0.6 - std::sqrt(r2)) / 0.2, 0.0, 1.0), w = u * u * (3 - 2 * u);
-            const double under = 0.35 * std::sqrt(std::max(0.0, 1 - r2)) - 0.01;
-            p.z += t / 8.0 * w * (under - p.z);
-        }
+        const std::vector<Point3> P = test::pushed_under(P0, t / 8.0, 0.01);
         (void)inc.advance(t, P);
         (void)full.advance(t, P);
         const DeformUpdateReport a = inc.update(), b = full.update();
