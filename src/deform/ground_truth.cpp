@@ -327,10 +327,13 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         vn.push_back(mesh.is_isolated(v) ? Vec3{} : normal(vertex_pool[vi]));
     }
     std::vector<Tri> tris;
+    std::vector<Face> tri_face;  // the face of each of tris
     tris.reserve(mesh.n_faces());
+    tri_face.reserve(mesh.n_faces());
     for (const Face f : mesh.faces()) {
         const auto v = mesh.face_vertices(f);
         tris.push_back({dense[v[0].idx()], dense[v[1].idx()], dense[v[2].idx()]});
+        tri_face.push_back(f);
     }
 
     // Vertices on a crease edge (dense indices).
@@ -345,7 +348,8 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
     std::vector<std::pair<double, std::uint32_t>> scratch;
     double R = 0, min_angle = kPi, min_angle_off = kPi, max_re = 0, dev_max = 0, dev_sum = 0;
     std::size_t dev_n = 0, inverted = 0;
-    for (const Tri& t : tris) {
+    for (std::size_t ti = 0; ti < tris.size(); ++ti) {
+        const Tri& t = tris[ti];
         const Point3 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
         R = std::max(R, circumradius(a, b, c));
         const double angle = dynmesh::min_angle(a, b, c);
@@ -368,7 +372,9 @@ FrameMetrics GroundTruth::measure(const SurfaceMesh& mesh,
         // stretched x3: 2 faces of the carried reference); the nearest point alone can lie on
         // one face of a sharp edge that a triangle across the edge makes more than 90 degrees
         // with, while it agrees with the surface at its corners.
-        if (dot(nf, sum) < 0 && to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0) ++inverted;
+        if (dot(nf, sum) < 0 && to_ref.nearest_facing((a + b + c) / 3.0, rank_of[t[0]], nf, scratch) < 0 &&
+            inverted++ == 0)
+            r.first_inverted = tri_face[ti];
     }
     r.R = R;
     r.min_angle_deg = tris.empty() ? nan : rad_to_deg(min_angle);

@@ -161,15 +161,7 @@ DeformRunReport run_deform(const Scenario& s, const DeformRunOptions& options) {
             }
             if (f.inverted > 0 && rep.first_inverted_t < 0) {
                 rep.first_inverted_t = t;
-                for (Face x : m.faces()) {
-                    const auto v = m.face_vertices(x);
-                    Vec3 truth_n{};
-                    for (Vertex u : v) truth_n += truth.normal(vertex_pool[u.idx()]);
-                    if (dot(triangle_normal(m.position(v[0]), m.position(v[1]), m.position(v[2])), truth_n) < 0) {
-                        rep.first_inverted = "triangle " + face_str(x);
-                        break;
-                    }
-                }
+                if (f.first_inverted.is_valid()) rep.first_inverted = "triangle " + face_str(f.first_inverted);
             }
         }
         row.metrics.t = t;

@@ -99,16 +99,21 @@ TEST(GroundTruth, InvertedMeansFacingAwayAtTheCornersAndAtTheNearestSurface) {
     GroundTruth g(s);
     g.set_time(100);  // the peak of the stretch
     const SurfaceMesh& ref = g.reference();
-    EXPECT_EQ(g.measure(ref, identity_vertex_pool(ref), all_pool(s)).inverted, 0u);
+    const FrameMetrics fr = g.measure(ref, identity_vertex_pool(ref), all_pool(s));
+    EXPECT_EQ(fr.inverted, 0u);
+    EXPECT_FALSE(fr.first_inverted.is_valid());  // nor names one (the report's first_inverted)
     SurfaceMesh input = *s.input_mesh;  // its vertex i is pool point i
     for (const Vertex v : input.vertices()) input.position(v) = ref.position(Vertex(v.idx()));
     const FrameMetrics f = g.measure(input, identity_vertex_pool(input), all_pool(s));
     EXPECT_EQ(f.inverted, 0u);
+    EXPECT_FALSE(f.first_inverted.is_valid());
     EXPECT_GT(f.normal_dev_max_deg, 90.0);  // the vertex normals disagree with some faces
     TriangleSoup soup = input.to_soup();
     for (auto& tr : soup.triangles) std::swap(tr[1], tr[2]);
     const SurfaceMesh reversed = SurfaceMesh::from_soup(soup);
-    EXPECT_EQ(g.measure(reversed, identity_vertex_pool(reversed), all_pool(s)).inverted, reversed.n_faces());
+    const FrameMetrics r = g.measure(reversed, identity_vertex_pool(reversed), all_pool(s));
+    EXPECT_EQ(r.inverted, reversed.n_faces());
+    EXPECT_EQ(r.first_inverted, *reversed.faces().begin());
 }
 
 TEST(GroundTruth, HausdorffEqualsTheAabbTreeImplementation) {

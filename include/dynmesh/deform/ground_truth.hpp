@@ -82,6 +82,8 @@ struct FrameMetrics {
     /// the face's barycentre (every face of the reference around that point when it lies on
     /// an edge or a vertex of the reference).
     std::size_t inverted = 0;
+    /// The first of them in mesh order (invalid when there is none).
+    Face first_inverted;
 };
 
 /// Sigma(t) of a scenario at one time: the reference mesh carried to t plus the queries
