@@ -915,6 +915,15 @@ deform_mesh)
     [ -s m/mesh_00030.off ] || fail "no last frame"
     run 0 "$bin" deform "$data/meshes/blobby.off" --warp twist --samples 3000 --steps 30 --report t.json --quiet
     [ -s "$data/meshes/eight.off" ] || fail "input gone"
+    # A CAD part keeps its creases by default (45 degrees); --feature-angle 180 turns them off,
+    # and a smooth scenario refuses the flag but runs without it.
+    run 0 "$bin" deform "$data/meshes/fandisk.off" --warp rotate --steps 4 --check \
+        --measure-every 0 --report c.json --quiet
+    [ "$(json_get c.json "['crease_edges']")" -gt 500 ] || fail "fandisk creases by default: $(json_get c.json "['crease_edges']")"
+    run 0 "$bin" deform "$data/meshes/fandisk.off" --warp rotate --steps 4 --feature-angle 180 \
+        --measure-every 0 --report n.json --quiet
+    [ "$(json_get n.json "['crease_edges']")" = "0" ] || fail "--feature-angle 180 kept creases"
+    run 2 "$bin" deform stretch --samples 500 --steps 3 --feature-angle 45 --quiet
     ;;
 deform_check)
     # --check: the invariants at every update; --check=strict: also every ball and monitor.

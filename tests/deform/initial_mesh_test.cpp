@@ -91,8 +91,9 @@ TEST_P(InitOnMeshFile, WithTheGlobalRHasTheInputTopologyAndIsChecked) {
     // The paper's global R: features smaller than a third of R (a thin part of the elephant,
     // the armadillo's scan wrinkles, a few places of igea) need vertices closer than R/3 or
     // leave balls that no flip can empty: outside the paper's global-reach model, and
-    // reported, not silent.
-    expect_good_start(GetParam(), 0.0, {"elephant.off", "armadillo.off", "igea.ply"}, {});
+    // reported, not silent. On fandisk's sharp edges the flips that would empty a few balls
+    // would fold a neighbour and are refused.
+    expect_good_start(GetParam(), 0.0, {"elephant.off", "armadillo.off", "igea.ply"}, {"fandisk.off"});
 }
 
 std::vector<std::string> mesh_files() {

@@ -191,6 +191,60 @@ TEST(DiametricRule, MatchesBallMembership) {
     EXPECT_EQ(diametric_condition(p, q, {0.5, 2, 0}, {0.5, -2, 0.1}), FlipVerdict::RuleFails);
 }
 
+TEST(DiametricRule, RefusesAFlipThatFoldsANeighbour) {
+    // The pair pqr, qps bends down along pq and the diametric rule takes pq (s lies in the
+    // ball of pqr). Across the side qr lies a face rqt turned 70 degrees from pqr: after the
+    // flip, the new face qrs turns more than 90 degrees from it (a new fold), so the flip is
+    // refused; with t mirrored so that rqt continues pqr, it is taken.
+    const Point3 p{-1, 0, 0}, q{1, 0, 0}, r{0, 0.5, 0}, s{0, -0.5, -0.4};
+    const Vec3 side = q - r, tilt{0.5, 1, 0.3};  // tilt: the normal of rqt, orthogonal to qr
+    ASSERT_EQ(dot(side, tilt), 0.0);
+    const Point3 folding = r + 0.5 * cross(tilt, side);
+    const Point3 flat = r + 0.5 * cross(Vec3{0, 0, 1}, side);
+    ASSERT_EQ(diametric_condition(p, q, r, s), FlipVerdict::Flippable);
+    const Vec3 n_qrs = triangle_normal_raw(q, r, s);
+    ASSERT_GT(dot(tilt, triangle_normal_raw(p, q, r)), 0.0);  // no fold before the flip
+    ASSERT_LE(dot(tilt, n_qrs), 0.0);                          // a fold after it
+    for (const bool fold : {true, false}) {
+        TriangleSoup soup;
+        soup.points = {p, q, r, s, fold ? folding : flat};
+        soup.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}};
+        const SurfaceMesh m = SurfaceMesh::from_soup(soup);
+        const Edge pq = m.find_edge(Vertex(0), Vertex(1));
+        EXPECT_EQ(flip_verdict(m, pq, FlipRule::DiametricBall), fold ? FlipVerdict::Degenerate : FlipVerdict::Flippable)
+            << (fold ? "folding" : "flat") << " neighbour";
+    }
+}
+
+TEST(DiametricRule, AllowsAFlipThatUnfoldsMoreThanItFolds) {
+    // The quad of the test above, with the folding neighbour across qr, and neighbours across
+    // ps and sq that fold against qps but not against the new faces. The flip makes one fold
+    // and removes one (ps alone): refused; it makes one and removes two (ps and sq): an
+    // update mends a folded patch that way, and the flip is taken.
+    const Point3 p{-1, 0, 0}, q{1, 0, 0}, r{0, 0.5, 0}, s{0, -0.5, -0.4};
+    const Vec3 n_qr{0.5, 1, 0.3}, n_ps{0.7, 1, 0.5}, n_sq{-0.7, 1, 0.5};  // the neighbours' normals
+    ASSERT_EQ(dot(n_qr, q - r), 0.0);
+    ASSERT_NEAR(dot(n_ps, s - p), 0.0, 1e-15);
+    ASSERT_NEAR(dot(n_sq, q - s), 0.0, 1e-15);
+    const Vec3 old_qps = triangle_normal_raw(q, p, s), new_psr = triangle_normal_raw(p, s, r),
+               new_qrs = triangle_normal_raw(q, r, s);
+    ASSERT_LE(dot(n_ps, old_qps), 0.0);
+    ASSERT_GT(dot(n_ps, new_psr), 0.0);
+    ASSERT_LE(dot(n_sq, old_qps), 0.0);
+    ASSERT_GT(dot(n_sq, new_qrs), 0.0);
+    for (const bool both : {false, true}) {
+        TriangleSoup soup;
+        soup.points = {p, q, r, s, r + 0.5 * cross(n_qr, q - r), s + 0.5 * cross(n_ps, p - s),
+                       q + 0.5 * cross(n_sq, s - q)};
+        soup.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}, {3, 0, 5}};
+        if (both) soup.triangles.push_back({1, 3, 6});
+        const SurfaceMesh m = SurfaceMesh::from_soup(soup);
+        EXPECT_EQ(flip_verdict(m, m.find_edge(Vertex(0), Vertex(1)), FlipRule::DiametricBall),
+                  both ? FlipVerdict::Flippable : FlipVerdict::Degenerate)
+            << (both ? "two folds removed" : "one fold removed");
+    }
+}
+
 TEST(Illegal, SymmetricInThePlane) {
     TriangleSoup s;
     s.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.2, 0}, {0.5, -0.2, 0}};

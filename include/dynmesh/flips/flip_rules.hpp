@@ -15,7 +15,11 @@ namespace dynmesh {
 
 enum class FlipRule {
     AngleDef3,      ///< Definition 3 of the edge-flip paper: all five conditions
-    DiametricBall,  ///< s inside the diametric ball of pqr, or r inside that of pqs
+    /// s inside the diametric ball of pqr, or r inside that of pqs; never a flip that folds
+    /// (Degenerate): the new pair turning by 90 degrees or more against itself or the old
+    /// pair, or a new such turn against a neighbour across a side of the quad unless the flip
+    /// lowers the number of folds on the quad's five edges
+    DiametricBall,
     PlanarIncircle  ///< z = 0 meshes: pqrs convex and s strictly inside circle(pqr)
 };
 
@@ -28,7 +32,7 @@ enum class FlipVerdict {
     Flippable,
     Boundary,        ///< a boundary edge, or a deleted one
     DiagonalExists,  ///< rs is already an edge (Definition 3 (v))
-    Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area
+    Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area, or (DiametricBall) the flip folds
     RuleFails,       ///< the rule's geometric condition does not hold
     NotImproving,    ///< the rule holds but the guard against cycles does not (counted)
     FeatureLocked    ///< the edge is locked (kLockedEdges), or the rule holds but it or the one it would create is sharp
