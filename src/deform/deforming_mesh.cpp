@@ -781,7 +781,7 @@ struct DeformingMesh::Impl {
     void global_flip() {
         if (flips_settled) return;
         FlipOptions fo;
-        fo.rule = FlipRule::DiametricBall;
+        fo.rule = FlipRule::DiametricBallNoFold;
         const auto edges = region.empty() ? stale_edges() : region_edges();
         const FlipReport r = flip_from(mesh, edges, fo);
         cur.flips += r.flips;

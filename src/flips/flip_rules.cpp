@@ -15,6 +15,7 @@ std::string_view to_string(FlipRule rule) {
     switch (rule) {
         case FlipRule::AngleDef3: return "angle";
         case FlipRule::DiametricBall: return "delaunay";
+        case FlipRule::DiametricBallNoFold: return "delaunay-nofold";
         case FlipRule::PlanarIncircle: return "planar";
     }
     return "?";
@@ -23,9 +24,10 @@ std::string_view to_string(FlipRule rule) {
 FlipRule parse_flip_rule(std::string_view name) {
     if (name == "angle" || name == "def3") return FlipRule::AngleDef3;
     if (name == "delaunay" || name == "diametric") return FlipRule::DiametricBall;
+    if (name == "delaunay-nofold") return FlipRule::DiametricBallNoFold;
     if (name == "planar") return FlipRule::PlanarIncircle;
     throw InvalidInput("unknown flip criterion '" + std::string(name) +
-                       "' (expected angle, delaunay or planar)");
+                       "' (expected angle, delaunay, delaunay-nofold or planar)");
 }
 
 EdgeQuad edge_quad(const SurfaceMesh& m, Edge e) {
@@ -191,14 +193,15 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
         if (unit_degenerate_triangle(p, s, r) || unit_degenerate_triangle(q, r, s))
             return FlipVerdict::Degenerate;
         // Never fold: the new pair must not turn by 90 degrees or more against each other or
-        // against the old pair, nor against a neighbour across one of the quad's four sides
-        // where the old pair did not (it cannot for dense samples, Theorem 4.1 (iv) of the
-        // deforming paper; on sparse ones the diametric rule alone could flip across a sharp
-        // ridge, or lay the new pair over a neighbour).
+        // against the old pair (it cannot for dense samples, Theorem 4.1 (iv) of the deforming
+        // paper; on sparse ones the diametric rule alone could flip across a sharp ridge).
+        // DiametricBallNoFold: nor against a neighbour across one of the quad's four sides
+        // where the old pair did not (it would lay the new pair over that neighbour).
         const Vec3 n_old = triangle_normal_raw(p, q, r) + triangle_normal_raw(q, p, s);
         const Vec3 n1 = triangle_normal_raw(p, s, r), n2 = triangle_normal_raw(q, r, s);
         if (!(dot(n1, n2) > 0 && dot(n1, n_old) > 0 && dot(n2, n_old) > 0)) return FlipVerdict::Degenerate;
-        if (makes_outer_fold(m, e, scale, {p, q, r, s})) return FlipVerdict::Degenerate;
+        if (rule == FlipRule::DiametricBallNoFold && makes_outer_fold(m, e, scale, {p, q, r, s}))
+            return FlipVerdict::Degenerate;
     }
     if (m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
     return v;

@@ -664,7 +664,7 @@ private:
         }
         for (Vertex u : mesh_.face_vertices(nearest))
             if (blocking(u) >= 0) return false;
-        const AddResult r = add_point(mesh_, target, nearest);
+        const AddResult r = add_point(mesh_, target, nearest, {.rule = FlipRule::DiametricBall});
         if (r.kind == AddCase::Vertex) return false;
         fit_arrays();
         vt_[r.vertex.idx()] = t_;

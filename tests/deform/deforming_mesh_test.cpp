@@ -389,7 +389,7 @@ TEST(DeformUpdate, LeavesNoEdgeForTheGlobalFlip) {
         changes += u.counters.insertions + u.counters.removals;
         SurfaceMesh copy = dm.mesh();
         FlipOptions fo;
-        fo.rule = FlipRule::DiametricBall;
+        fo.rule = FlipRule::DiametricBallNoFold;  // the rule of the update
         EXPECT_EQ(flip_all(copy, fo).flips, 0u) << "t = " << t;
         ++checked;
     }

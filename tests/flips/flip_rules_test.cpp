@@ -191,7 +191,7 @@ TEST(DiametricRule, MatchesBallMembership) {
     EXPECT_EQ(diametric_condition(p, q, {0.5, 2, 0}, {0.5, -2, 0.1}), FlipVerdict::RuleFails);
 }
 
-TEST(DiametricRule, RefusesAFlipThatFoldsANeighbour) {
+TEST(DiametricNoFoldRule, RefusesAFlipThatFoldsANeighbour) {
     // The pair pqr, qps bends down along pq and the diametric rule takes pq (s lies in the
     // ball of pqr). Across the side qr lies a face rqt turned 70 degrees from pqr: after the
     // flip, the new face qrs turns more than 90 degrees from it (a new fold), so the flip is
@@ -211,12 +211,14 @@ TEST(DiametricRule, RefusesAFlipThatFoldsANeighbour) {
         soup.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}};
         const SurfaceMesh m = SurfaceMesh::from_soup(soup);
         const Edge pq = m.find_edge(Vertex(0), Vertex(1));
-        EXPECT_EQ(flip_verdict(m, pq, FlipRule::DiametricBall), fold ? FlipVerdict::Degenerate : FlipVerdict::Flippable)
+        EXPECT_EQ(flip_verdict(m, pq, FlipRule::DiametricBallNoFold),
+                  fold ? FlipVerdict::Degenerate : FlipVerdict::Flippable)
             << (fold ? "folding" : "flat") << " neighbour";
+        EXPECT_EQ(flip_verdict(m, pq, FlipRule::DiametricBall), FlipVerdict::Flippable);  // the plain rule
     }
 }
 
-TEST(DiametricRule, AllowsAFlipThatUnfoldsMoreThanItFolds) {
+TEST(DiametricNoFoldRule, AllowsAFlipThatUnfoldsMoreThanItFolds) {
     // The quad of the test above, with the folding neighbour across qr, and neighbours across
     // ps and sq that fold against qps but not against the new faces. The flip makes one fold
     // and removes one (ps alone): refused; it makes one and removes two (ps and sq): an
@@ -239,7 +241,7 @@ TEST(DiametricRule, AllowsAFlipThatUnfoldsMoreThanItFolds) {
         soup.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}, {3, 0, 5}};
         if (both) soup.triangles.push_back({1, 3, 6});
         const SurfaceMesh m = SurfaceMesh::from_soup(soup);
-        EXPECT_EQ(flip_verdict(m, m.find_edge(Vertex(0), Vertex(1)), FlipRule::DiametricBall),
+        EXPECT_EQ(flip_verdict(m, m.find_edge(Vertex(0), Vertex(1)), FlipRule::DiametricBallNoFold),
                   both ? FlipVerdict::Flippable : FlipVerdict::Degenerate)
             << (both ? "two folds removed" : "one fold removed");
     }
@@ -259,6 +261,8 @@ TEST(Illegal, SymmetricInThePlane) {
 TEST(FlipRule, ParsesNames) {
     EXPECT_EQ(parse_flip_rule("angle"), FlipRule::AngleDef3);
     EXPECT_EQ(parse_flip_rule("delaunay"), FlipRule::DiametricBall);
+    EXPECT_EQ(parse_flip_rule("delaunay-nofold"), FlipRule::DiametricBallNoFold);
+    EXPECT_EQ(to_string(FlipRule::DiametricBallNoFold), "delaunay-nofold");
     EXPECT_THROW((void)parse_flip_rule("bogus"), InvalidInput);
 }
 

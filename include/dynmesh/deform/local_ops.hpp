@@ -44,7 +44,7 @@ enum class AddCase {
 
 struct AddOptions {
     double bary_tol = 1e-6;                ///< tau_bary of the digest (§5)
-    FlipRule rule = FlipRule::DiametricBall;
+    FlipRule rule = FlipRule::DiametricBallNoFold;
     /// The final check looks for vertices within this many edge hops of p inside the
     /// diametric ball of one of p's triangles, and for p inside the balls of the other
     /// triangles around p's neighbours; violations re-seed the local flip with every edge
@@ -102,7 +102,7 @@ AddResult add_point(SurfaceMesh& mesh, const Point3& p, Face nearest,
 // ---- Remove(v) ---------------------------------------------------------------------------
 
 struct RemoveOptions {
-    FlipRule rule = FlipRule::DiametricBall;
+    FlipRule rule = FlipRule::DiametricBallNoFold;
     bool flip_after = true;             ///< run the local flip after re-triangulating
     std::size_t check_rings = 2;        ///< as AddOptions::check_rings, around the link
     std::size_t max_repair_rounds = 4;  ///< as AddOptions::max_repair_rounds

@@ -16,15 +16,18 @@ namespace dynmesh {
 enum class FlipRule {
     AngleDef3,      ///< Definition 3 of the edge-flip paper: all five conditions
     /// s inside the diametric ball of pqr, or r inside that of pqs; never a flip that folds
-    /// (Degenerate): the new pair turning by 90 degrees or more against itself or the old
-    /// pair, or a new such turn against a neighbour across a side of the quad unless the flip
-    /// lowers the number of folds on the quad's five edges
+    /// the new pair (Degenerate: it turns by 90 degrees or more against itself or the old pair)
     DiametricBall,
+    /// DiametricBall, and never a new fold (a turn by 90 degrees or more) against a
+    /// neighbour across one of the quad's four sides unless the flip lowers the number of
+    /// folds on the quad's five edges (Degenerate); the rule of the deforming mesh's updates
+    DiametricBallNoFold,
     PlanarIncircle  ///< z = 0 meshes: pqrs convex and s strictly inside circle(pqr)
 };
 
 [[nodiscard]] std::string_view to_string(FlipRule rule);
-/// Parses "angle" / "def3", "delaunay" / "diametric", "planar". \throw InvalidInput.
+/// Parses "angle" / "def3", "delaunay" / "diametric", "delaunay-nofold", "planar".
+/// \throw InvalidInput.
 [[nodiscard]] FlipRule parse_flip_rule(std::string_view name);
 
 /// Why an edge is or is not flippable (counted in reports).
@@ -32,7 +35,7 @@ enum class FlipVerdict {
     Flippable,
     Boundary,        ///< a boundary edge, or a deleted one
     DiagonalExists,  ///< rs is already an edge (Definition 3 (v))
-    Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area, or (DiametricBall) the flip folds
+    Degenerate,      ///< one of the four triangles (old or new) has (almost) zero area, or (diametric rules) the flip folds
     RuleFails,       ///< the rule's geometric condition does not hold
     NotImproving,    ///< the rule holds but the guard against cycles does not (counted)
     FeatureLocked    ///< the edge is locked (kLockedEdges), or the rule holds but it or the one it would create is sharp
