@@ -133,23 +133,27 @@ bool planar_condition(const Point3& p, const Point3& q, const Point3& r, const P
 
 namespace {
 
-/// Flipping e (its quad p, q, r, s scaled by `scale`) makes a new fold across one of the
-/// quad's four sides (the new face there turns by 90 degrees or more against the face across
-/// that side, where the old face did not) without lowering the number of folds on the quad's
-/// five edges. A flip that unfolds more than it folds stays allowed: an update mends a
+/// The (unnormalised) normals of the faces of an edge's quad p, q, r, s before a flip (pqr,
+/// qps) and after it (psr, qrs), in its scaled frame.
+struct QuadNormals {
+    Vec3 pqr, qps, psr, qrs;
+};
+
+/// Flipping e (its quad scaled by `scale`, with normals `n`) makes a new fold across one of
+/// the quad's four sides (the new face there turns by 90 degrees or more against the face
+/// across that side, where the old face did not) without lowering the number of folds on the
+/// quad's five edges. A flip that unfolds more than it folds stays allowed: an update mends a
 /// folded patch with such flips. The new pair itself is known not to fold.
-bool makes_outer_fold(const SurfaceMesh& m, Edge e, const ExactScale& scale, const std::array<Point3, 4>& quad) {
-    const auto& [p, q, r, s] = quad;
-    const Vec3 old_pqr = triangle_normal_raw(p, q, r), old_qps = triangle_normal_raw(q, p, s);
-    const Vec3 new_psr = triangle_normal_raw(p, s, r), new_qrs = triangle_normal_raw(q, r, s);
-    int before = dot(old_pqr, old_qps) > 0 ? 0 : 1, after = 0;
+bool makes_outer_fold(const SurfaceMesh& m, Edge e, const ExactScale& scale, const QuadNormals& n) {
+    int before = dot(n.pqr, n.qps) > 0 ? 0 : 1, after = 0;
     bool new_fold = false;
     const auto side = [&](Halfedge h, const Vec3& old_n, const Vec3& new_n) {
         const Halfedge out = m.twin(h);
         if (m.is_boundary(out)) return;
         const auto at = [&](Vertex v) { return scale.apply(m.position(v)); };
-        const Vec3 n = triangle_normal_raw(at(m.from_vertex(out)), at(m.to_vertex(out)), at(m.opposite_vertex(out)));
-        const bool was = !(dot(n, old_n) > 0), is = !(dot(n, new_n) > 0);
+        const Vec3 beyond =
+            triangle_normal_raw(at(m.from_vertex(out)), at(m.to_vertex(out)), at(m.opposite_vertex(out)));
+        const bool was = !(dot(beyond, old_n) > 0), is = !(dot(beyond, new_n) > 0);
         before += was;
         after += is;
         new_fold |= is && !was;
@@ -157,10 +161,10 @@ bool makes_outer_fold(const SurfaceMesh& m, Edge e, const ExactScale& scale, con
     // The face of halfedge 0 is p q r, that of halfedge 1 is q p s (edge_quad()).
     const Halfedge qr = m.next(SurfaceMesh::halfedge(e, 0)), rp = m.next(qr);
     const Halfedge ps = m.next(SurfaceMesh::halfedge(e, 1)), sq = m.next(ps);
-    side(qr, old_pqr, new_qrs);
-    side(rp, old_pqr, new_psr);
-    side(ps, old_qps, new_psr);
-    side(sq, old_qps, new_qrs);
+    side(qr, n.pqr, n.qrs);
+    side(rp, n.pqr, n.psr);
+    side(ps, n.qps, n.psr);
+    side(sq, n.qps, n.qrs);
     return new_fold && after >= before;
 }
 
@@ -197,11 +201,11 @@ FlipVerdict flip_verdict(const SurfaceMesh& m, Edge e, FlipRule rule) {
         // paper; on sparse ones the diametric rule alone could flip across a sharp ridge).
         // DiametricBallNoFold: nor against a neighbour across one of the quad's four sides
         // where the old pair did not (it would lay the new pair over that neighbour).
-        const Vec3 n_old = triangle_normal_raw(p, q, r) + triangle_normal_raw(q, p, s);
-        const Vec3 n1 = triangle_normal_raw(p, s, r), n2 = triangle_normal_raw(q, r, s);
-        if (!(dot(n1, n2) > 0 && dot(n1, n_old) > 0 && dot(n2, n_old) > 0)) return FlipVerdict::Degenerate;
-        if (rule == FlipRule::DiametricBallNoFold && makes_outer_fold(m, e, scale, {p, q, r, s}))
-            return FlipVerdict::Degenerate;
+        const QuadNormals n{triangle_normal_raw(p, q, r), triangle_normal_raw(q, p, s), triangle_normal_raw(p, s, r),
+                            triangle_normal_raw(q, r, s)};
+        const Vec3 n_old = n.pqr + n.qps;
+        if (!(dot(n.psr, n.qrs) > 0 && dot(n.psr, n_old) > 0 && dot(n.qrs, n_old) > 0)) return FlipVerdict::Degenerate;
+        if (rule == FlipRule::DiametricBallNoFold && makes_outer_fold(m, e, scale, n)) return FlipVerdict::Degenerate;
     }
     if (m.find_halfedge(k.r, k.s).is_valid()) return FlipVerdict::DiagonalExists;
     return v;
